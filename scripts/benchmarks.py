@@ -1,0 +1,12 @@
+"""The benchmark list shared by `make run` and the test suite.
+
+Each entry: a name (also the output folder under results/) and the FreeFem++ driver
+with its parameters. Adding a benchmark is one line here.
+"""
+
+BENCHMARKS = [
+    ("cube_2d_mooney", "benchmarks/cube.edp", ["-material", "mooney", "-dim", "2"]),
+    ("cube_2d_neohookean", "benchmarks/cube.edp", ["-material", "neohookean", "-dim", "2"]),
+    ("cube_3d_mooney", "benchmarks/cube.edp", ["-material", "mooney", "-dim", "3", "-n", "4"]),
+    ("cube_3d_neohookean", "benchmarks/cube.edp", ["-material", "neohookean", "-dim", "3", "-n", "4"]),
+]

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Installs what the suite needs on Debian/Ubuntu, skipping what is already there:
+# FreeFEM with its plugins (ff-Ipopt, iovtk, msh3, gsl), gmsh, python3.
+# Called by every make target; uses sudo when not root.
+set -euo pipefail
+
+have_plugin() {
+  for dir in /usr/lib/freefem++ /usr/local/lib/ff++/*/lib /usr/lib/ff++/*/lib; do
+    [ -f "$dir/$1.so" ] && return 0
+  done
+  return 1
+}
+
+missing=()
+command -v FreeFem++ >/dev/null 2>&1 || missing+=(freefem++)
+have_plugin ff-Ipopt || missing+=(libfreefem++)
+command -v gmsh >/dev/null 2>&1 || missing+=(gmsh)
+command -v python3 >/dev/null 2>&1 || missing+=(python3)
+
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+echo "installing: ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null 2>&1 || { echo "error: need root or sudo to install ${missing[*]}" >&2; exit 1; }
+  SUDO="sudo"
+fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "installed: ${missing[*]}"
