@@ -144,9 +144,23 @@ def test_bad_input():
     expect_error("a parameter given twice", ["-nu", "0.3", "-nu", "0.4"], "-nu")
 
 
+def test_ipopt_failure_is_reported():
+    """An IPOPT status other than success: one line with the status name, non-zero exit."""
+    o = out("maxiter")
+    code, output, _ = run_driver("benchmarks/cube.edp", ["-maxiter", "1"], o)
+    errors = [l for l in output.splitlines() if l.startswith("error:")]
+    check("IPOPT failure: non-zero exit", code != 0, f"exit {code}")
+    check("IPOPT failure: one error line with the status name",
+          len(errors) == 1 and "Maximum_Iterations_Exceeded" in errors[0], str(errors))
+    s = read_summary(o)
+    check("IPOPT failure: summary.json records the status and the 1 iteration done",
+          s is not None and s["ipopt_status"] == "Maximum_Iterations_Exceeded" and s["ipopt_iterations"] == 1,
+          str(s and (s["ipopt_status"], s["ipopt_iterations"])))
+
+
 def main():
     tests = [test_law_derivatives, test_cube, test_cube_second_parameter_set, test_output_contract,
-             test_working_folder_untouched, test_bad_input]
+             test_working_folder_untouched, test_bad_input, test_ipopt_failure_is_reported]
     only = sys.argv[1:]
     for test in tests:
         if only and not any(o in test.__name__ for o in only):
