@@ -41,6 +41,17 @@ def test_law_derivatives():
     check("fd_laws exit code", code == 0, f"exit {code}")
 
 
+def test_obstacle_derivatives():
+    """Gradient and Hessian of every obstacle g(x) against central differences
+    (fd_obstacles.edp, h = 1e-5: truncation ~1e-10, tolerance 1e-8)."""
+    code, output, _ = run_driver("tests/fd_obstacles.edp", [], None)
+    lines = [l for l in output.splitlines() if l.startswith("fd_obstacles obstacle=")]
+    check("fd_obstacles: 5 obstacle checks ran", len(lines) == 5, f"{len(lines)} lines")
+    for line in lines:
+        check("fd_obstacles " + line.split()[1], line.endswith("PASS"), line)
+    check("fd_obstacles exit code", code == 0, f"exit {code}")
+
+
 # ---------------------------------------------------------------- cube
 def cube_case(label, args, tol=1e-8):
     """The block under dead-load pressure is a homogeneous deformation: P1 reproduces
@@ -159,7 +170,7 @@ def test_ipopt_failure_is_reported():
 
 
 def main():
-    tests = [test_law_derivatives, test_cube, test_cube_second_parameter_set, test_output_contract,
+    tests = [test_law_derivatives, test_obstacle_derivatives, test_cube, test_cube_second_parameter_set, test_output_contract,
              test_working_folder_untouched, test_bad_input, test_ipopt_failure_is_reported]
     only = sys.argv[1:]
     for test in tests:
