@@ -9,4 +9,7 @@ BENCHMARKS = [
     ("cube_2d_neohookean", "benchmarks/cube.edp", ["-material", "neohookean", "-dim", "2"]),
     ("cube_3d_mooney", "benchmarks/cube.edp", ["-material", "mooney", "-dim", "3", "-n", "4"]),
     ("cube_3d_neohookean", "benchmarks/cube.edp", ["-material", "neohookean", "-dim", "3", "-n", "4"]),
+    ("cube_2d_mooney_foundation", "benchmarks/cube.edp", ["-material", "mooney", "-dim", "2", "-foundation", "1"]),
+    ("cube_3d_neohookean_foundation", "benchmarks/cube.edp",
+     ["-material", "neohookean", "-dim", "3", "-n", "4", "-foundation", "1"]),
 ]

@@ -98,6 +98,23 @@ def test_cube_second_parameter_set():
                       [round(st["load_factor"], 12) for st in s["steps"]] == [round(1 / 3, 12), round(2 / 3, 12), 1.0])
 
 
+def test_cube_on_foundation():
+    """The block resting on the rigid plane y = 0 (contact instead of u_y = 0) has the same
+    exact solution; the contact force from IPOPT's multipliers must carry the whole load
+    (pressure x top area) and nothing may sink into the plane."""
+    for material in ("mooney", "neohookean"):
+        for dim, n in (("2", "6"), ("3", "3")):
+            label = f"cube {dim}D {material} on foundation"
+            s = cube_case(label, ["-material", material, "-dim", dim, "-n", n, "-foundation", "1"])
+            if s is None:
+                continue
+            f = s["results"]["contact_force"]
+            check(f"{label}: contact force = applied load to 1e-10", f["rel_error"] <= 1e-10,
+                  f"{f['computed']:.12g} vs {f['reference']:.12g}, rel={f['rel_error']:.1e}")
+            p = s["results"]["max_penetration"]["computed"]
+            check(f"{label}: penetration <= 1e-10 x block height", p <= 1e-10, f"{p:.1e}")
+
+
 def test_output_contract():
     o = out("contract")
     code, _, _ = run_driver("benchmarks/cube.edp", ["-n", "2"], o)
@@ -170,7 +187,8 @@ def test_ipopt_failure_is_reported():
 
 
 def main():
-    tests = [test_law_derivatives, test_obstacle_derivatives, test_cube, test_cube_second_parameter_set, test_output_contract,
+    tests = [test_law_derivatives, test_obstacle_derivatives, test_cube, test_cube_second_parameter_set, test_cube_on_foundation,
+             test_output_contract,
              test_working_folder_untouched, test_bad_input, test_ipopt_failure_is_reported]
     only = sys.argv[1:]
     for test in tests:
