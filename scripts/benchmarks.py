@@ -12,4 +12,9 @@ BENCHMARKS = [
     ("cube_2d_mooney_foundation", "benchmarks/cube.edp", ["-material", "mooney", "-dim", "2", "-foundation", "1"]),
     ("cube_3d_neohookean_foundation", "benchmarks/cube.edp",
      ["-material", "neohookean", "-dim", "3", "-n", "4", "-foundation", "1"]),
+    ("hertz_plane", "benchmarks/hertz_plane.edp", []),
+    ("hertz_plane_neohookean", "benchmarks/hertz_plane.edp", ["-material", "neohookean"]),
+    ("hertz_circle_exact", "benchmarks/hertz_circle.edp", ["-constraint", "exact"]),
+    ("hertz_circle_linearized", "benchmarks/hertz_circle.edp", ["-constraint", "linearized"]),
+    ("hertz_circle_vertical", "benchmarks/hertz_circle.edp", ["-constraint", "vertical"]),
 ]
