@@ -17,4 +17,6 @@ BENCHMARKS = [
     ("hertz_circle_exact", "benchmarks/hertz_circle.edp", ["-constraint", "exact"]),
     ("hertz_circle_linearized", "benchmarks/hertz_circle.edp", ["-constraint", "linearized"]),
     ("hertz_circle_vertical", "benchmarks/hertz_circle.edp", ["-constraint", "vertical"]),
+    ("clamped_square", "benchmarks/clamped_square.edp", []),
+    ("hertz_sphere", "benchmarks/hertz_sphere.edp", []),
 ]

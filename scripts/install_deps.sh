@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs what the suite needs on Debian/Ubuntu, skipping what is already there:
-# FreeFEM with its plugins (ff-Ipopt, iovtk, msh3, gsl), gmsh, python3.
+# FreeFEM with its plugins (ff-Ipopt, iovtk, msh3, gsl), gmsh, python3, and OpenBLAS: Debian's
+# MUMPS (IPOPT's linear solver) otherwise runs on the reference BLAS, and the factorisations
+# that dominate every contact solve take 4x longer (3D Hertz, 23.6k dofs: 53 s -> 12 s).
 # Called by every make target; uses sudo when not root.
 set -euo pipefail
 
@@ -16,6 +18,7 @@ command -v FreeFem++ >/dev/null 2>&1 || missing+=(freefem++)
 have_plugin ff-Ipopt || missing+=(libfreefem++)
 command -v gmsh >/dev/null 2>&1 || missing+=(gmsh)
 command -v python3 >/dev/null 2>&1 || missing+=(python3)
+dpkg -s libopenblas0-pthread >/dev/null 2>&1 || missing+=(libopenblas0-pthread)
 
 if [ ${#missing[@]} -eq 0 ]; then
   exit 0
