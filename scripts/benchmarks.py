@@ -19,4 +19,6 @@ BENCHMARKS = [
     ("hertz_circle_vertical", "benchmarks/hertz_circle.edp", ["-constraint", "vertical"]),
     ("clamped_square", "benchmarks/clamped_square.edp", []),
     ("hertz_sphere", "benchmarks/hertz_sphere.edp", []),
+    ("oring_groove", "benchmarks/oring.edp", ["-case", "groove"]),
+    ("oring_plates", "benchmarks/oring.edp", ["-case", "plates"]),
 ]

@@ -314,6 +314,63 @@ def test_hertz_sphere():
     hertz_case("hertz sphere", "benchmarks/hertz_sphere.edp", [], bound_a=3e-2, bound_l2=None)
 
 
+# ---------------------------------------------------------------- O-ring
+def test_oring_groove():
+    """The ring squeezed into the closing groove (4 load steps). The problem and the mesh are
+    symmetric about y = x, so opposite faces balance and floor = wall to the solver tolerance
+    (measured 1e-11 .. 1e-16; bound 1e-8), the symmetry tie carries no force, nothing
+    penetrates, and no element inverts."""
+    o = out("oring groove")
+    code, output, _ = run_driver("benchmarks/oring.edp", ["-case", "groove", "-steps", "4"], o)
+    s = read_summary(o)
+    if code != 0 or s is None:
+        record("oring groove", False, f"exit {code}: {output.strip().splitlines()[-3:]}")
+        return
+    r = s["results"]
+    check("oring groove: IPOPT converged every step", s["ipopt_status"] == "Solve_Succeeded" and s["complete"], s["ipopt_status"])
+    for q in ("floor_ceiling_balance_rel_error", "walls_balance_rel_error", "floor_wall_symmetry_rel_error",
+              "force_balance_rel_error"):
+        v = r[q]["computed"]
+        check(f"oring groove: {q} <= 1e-8", v <= 1e-8, f"{v:.1e}")
+    tie = r["tie_force"]["computed"] / r["floor_force"]["computed"]
+    check("oring groove: the symmetry tie carries <= 1e-8 of the face force", tie <= 1e-8, f"{tie:.1e}")
+    check("oring groove: the ring is squeezed (face force > 0, contact width > 0)",
+          r["floor_force"]["computed"] > 0 and r["floor_contact_width"]["computed"] > 0)
+    pen = r["max_penetration"]["computed"]
+    check("oring groove: penetration <= 1e-10 R", pen <= 1e-10 * 0.52, f"{pen:.1e}")
+    check("oring groove: J > 0 everywhere", r["J_min"]["computed"] > 0, f"{r['J_min']['computed']:.4f}")
+    check("oring groove: one face-force row per step in face_forces.csv",
+          os.path.exists(os.path.join(o, "face_forces.csv")) and len(open(os.path.join(o, "face_forces.csv")).readlines()) == 5)
+
+
+def test_oring_plates():
+    """Plates, quarter model, c up to 0.3. Lindley's law is empirical, so the reference is
+    our own mesh study: computed / Lindley at c = 0.2 is 1.417, 1.344, 1.323 for h = R/12,
+    R/24, R/48 (P1 at nu = 0.499 is stiff on coarse meshes), Richardson -> 1.31. The default
+    h = R/24 must land in [1.28, 1.40]: the converged value minus its uncertainty, and the
+    default-mesh value plus 0.05."""
+    o = out("oring plates")
+    code, output, _ = run_driver("benchmarks/oring.edp", ["-case", "plates"], o)
+    s = read_summary(o)
+    if code != 0 or s is None:
+        record("oring plates", False, f"exit {code}: {output.strip().splitlines()[-3:]}")
+        return
+    r = s["results"]
+    check("oring plates: IPOPT converged every step", s["ipopt_status"] == "Solve_Succeeded" and s["complete"], s["ipopt_status"])
+    ratio = r["force_c0.2"]["computed"] / r["force_c0.2"]["reference"]
+    check("oring plates: force / Lindley at c = 0.2 in [1.28, 1.40]", 1.28 <= ratio <= 1.40, f"{ratio:.4f}")
+    fb = r["force_balance_rel_error"]["computed"]
+    check("oring plates: force balance <= 1e-8", fb <= 1e-8, f"{fb:.1e}")
+    sym = abs(r["symmetry_reaction_y"]["computed"] - r["force_c0.3"]["computed"] / 2) / r["force_c0.3"]["computed"]
+    check("oring plates: the symmetry plane y = 0 carries the plate force (half the ring's) to 1e-8", sym <= 1e-8, f"{sym:.1e}")
+    pen = r["max_penetration"]["computed"]
+    check("oring plates: penetration <= 1e-10 R", pen <= 1e-10 * 0.52, f"{pen:.1e}")
+    rows = open(os.path.join(o, "force_squeeze.csv")).read().splitlines() if os.path.exists(os.path.join(o, "force_squeeze.csv")) else []
+    forces = [float(l.split(",")[1]) for l in rows[1:]]
+    check("oring plates: force_squeeze.csv has 15 rows, force increasing with c",
+          len(forces) == 15 and all(b > a for a, b in zip(forces, forces[1:])), f"{len(forces)} rows")
+
+
 # ---------------------------------------------------------------- bad input
 def expect_error(label, args, word, out_dir=None):
     o = out_dir or out("bad-" + label)
@@ -339,23 +396,28 @@ def test_bad_input():
 
 
 def test_ipopt_failure_is_reported():
-    """An IPOPT status other than success: one line with the status name, non-zero exit."""
+    """An IPOPT status other than success: the load increment is halved and retried from
+    the last converged state (6 times at most), then one line with the status name, a
+    non-zero exit, and a summary.json marked incomplete with the status and the cuts."""
     o = out("maxiter")
     code, output, _ = run_driver("benchmarks/cube.edp", ["-maxiter", "1"], o)
     errors = [l for l in output.splitlines() if l.startswith("error:")]
+    cuts = [l for l in output.splitlines() if "cutting the load increment" in l]
     check("IPOPT failure: non-zero exit", code != 0, f"exit {code}")
     check("IPOPT failure: one error line with the status name",
           len(errors) == 1 and "Maximum_Iterations_Exceeded" in errors[0], str(errors))
+    check("IPOPT failure: 6 step cuts printed before giving up", len(cuts) == 6, f"{len(cuts)}")
     s = read_summary(o)
-    check("IPOPT failure: summary.json records the status and the 1 iteration done",
-          s is not None and s["ipopt_status"] == "Maximum_Iterations_Exceeded" and s["ipopt_iterations"] == 1,
-          str(s and (s["ipopt_status"], s["ipopt_iterations"])))
+    check("IPOPT failure: summary.json records the status, 7 attempts of 1 iteration, load factor 0, incomplete",
+          s is not None and s["ipopt_status"] == "Maximum_Iterations_Exceeded" and s["ipopt_iterations"] == 7
+          and s["step_cuts"] == 6 and s["load_factor_reached"] == 0 and s["complete"] is False,
+          str(s and (s["ipopt_status"], s["ipopt_iterations"], s["step_cuts"], s["complete"])))
 
 
 def main():
     tests = [test_law_derivatives, test_obstacle_derivatives, test_cube, test_cube_second_parameter_set, test_cube_on_foundation,
              test_hertz_plane, test_hertz_circle, test_hertz_hyperelastic, test_hertz_bad_input,
-             test_clamped_square, test_hertz_sphere, test_output_contract,
+             test_clamped_square, test_hertz_sphere, test_oring_groove, test_oring_plates, test_output_contract,
              test_working_folder_untouched, test_bad_input, test_ipopt_failure_is_reported]
     only = sys.argv[1:]
     for test in tests:
