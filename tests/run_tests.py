@@ -31,6 +31,17 @@ def out(name):
     return os.path.join(TMP, re.sub(r"\W+", "_", name))
 
 
+def run_summary(label, script, args):
+    """Runs a driver into its own folder; its summary, or None (recorded as a failure)."""
+    o = out(label)
+    code, output, _ = run_driver(script, args, o)
+    s = read_summary(o)
+    if code != 0 or s is None:
+        record(label, False, f"exit {code}: {output.strip().splitlines()[-3:]}")
+        return None
+    return s
+
+
 # ---------------------------------------------------------------- derivatives
 def test_law_derivatives():
     """Every law's P and A against central differences of psi and P (fd_laws.edp):
@@ -58,11 +69,8 @@ def test_obstacle_derivatives():
 def cube_case(label, args, tol=1e-8):
     """The block under dead-load pressure is a homogeneous deformation: P1 reproduces
     it exactly, so the only error left is IPOPT's tolerance (-tol 1e-9 by default)."""
-    o = out(label)
-    code, output, _ = run_driver("benchmarks/cube.edp", args, o)
-    s = read_summary(o)
-    if code != 0 or s is None:
-        record(label, False, f"exit {code}: {output.strip().splitlines()[-3:]}")
+    s = run_summary(label, "benchmarks/cube.edp", args)
+    if s is None:
         return None
     w = s["results"]["w"]
     check(f"{label}: |w - w_exact|/w_exact <= {tol}", w["rel_error"] <= tol,
@@ -157,11 +165,8 @@ def hertz_case(label, script, args, bound_a=3e-3, bound_l2=1e-2):
     adds <= 2e-4), L2 of p within bound_l2 (edge of contact: ~0.2 % .. 0.7 % at h = a/30),
     force balance <= 1e-8 (solver tolerance 1e-8 on scaled stationarity: measured ~1e-13)
     and no penetration beyond 1e-10 R (bound relaxation is off: measured 0)."""
-    o = out(label)
-    code, output, _ = run_driver(script, args, o)
-    s = read_summary(o)
-    if code != 0 or s is None:
-        record(label, False, f"exit {code}: {output.strip().splitlines()[-3:]}")
+    s = run_summary(label, script, args)
+    if s is None:
         return None
     r = s["results"]
     R = s["parameters"]["R"]
@@ -282,11 +287,8 @@ def test_clamped_square():
     solver tolerance."""
     with open(os.path.join(ROOT, "reference", "clamped_square.json")) as f:
         ref = json.load(f)["reference"]
-    o = out("clamped square")
-    code, output, _ = run_driver("benchmarks/clamped_square.edp", [], o)
-    s = read_summary(o)
-    if code != 0 or s is None:
-        record("clamped square", False, f"exit {code}: {output.strip().splitlines()[-3:]}")
+    s = run_summary("clamped square", "benchmarks/clamped_square.edp", [])
+    if s is None:
         return
     r = s["results"]
     bounds = {"contact_force": ("rel", 1e-3), "clamp_reaction_x": ("rel", 1e-3), "pressure_at_y0.8": ("rel", 2.5e-3),
@@ -321,10 +323,8 @@ def test_oring_groove():
     (measured 1e-11 .. 1e-16; bound 1e-8), the symmetry tie carries no force, nothing
     penetrates, and no element inverts."""
     o = out("oring groove")
-    code, output, _ = run_driver("benchmarks/oring.edp", ["-case", "groove", "-steps", "4"], o)
-    s = read_summary(o)
-    if code != 0 or s is None:
-        record("oring groove", False, f"exit {code}: {output.strip().splitlines()[-3:]}")
+    s = run_summary("oring groove", "benchmarks/oring.edp", ["-case", "groove", "-steps", "4"])
+    if s is None:
         return
     r = s["results"]
     check("oring groove: IPOPT converged every step", s["ipopt_status"] == "Solve_Succeeded" and s["complete"], s["ipopt_status"])
@@ -350,10 +350,8 @@ def test_oring_plates():
     h = R/24 must land in [1.28, 1.40]: the converged value minus its uncertainty, and the
     default-mesh value plus 0.05."""
     o = out("oring plates")
-    code, output, _ = run_driver("benchmarks/oring.edp", ["-case", "plates"], o)
-    s = read_summary(o)
-    if code != 0 or s is None:
-        record("oring plates", False, f"exit {code}: {output.strip().splitlines()[-3:]}")
+    s = run_summary("oring plates", "benchmarks/oring.edp", ["-case", "plates"])
+    if s is None:
         return
     r = s["results"]
     check("oring plates: IPOPT converged every step", s["ipopt_status"] == "Solve_Succeeded" and s["complete"], s["ipopt_status"])
