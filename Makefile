@@ -1,16 +1,32 @@
-# Quick start: `make` runs every benchmark and prints the results table;
-# `make test` runs the test suite. Both install missing dependencies first.
-.PHONY: run test convergence deps clean
+# Quick start: `make` runs every benchmark and writes the report (results/REPORT.md and
+# results/report.html); `make test` runs the test suite. Both install missing dependencies
+# first. Benchmarks run in parallel, one per core (JOBS=1 for one at a time).
+.PHONY: run report table test convergence bench deps clean
+# Debian's interpreter, where the deps script installs matplotlib (a pyenv shim may shadow it)
+PYTHON := $(shell test -x /usr/bin/python3 && echo /usr/bin/python3 || echo python3)
+JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+NAMES = $(shell $(PYTHON) scripts/run_benchmarks.py --names)
 
 run: deps
-	python3 scripts/run_benchmarks.py
+	@$(MAKE) --no-print-directory -j$(JOBS) report
+
+report: $(addprefix benchmark-,$(NAMES)) convergence-quick
+	@$(PYTHON) scripts/run_benchmarks.py --table
+	@$(PYTHON) scripts/report.py
+
+benchmark-%:
+	@$(PYTHON) scripts/run_benchmarks.py --only $*
+
+# Hertz refinement study for the report (h = a/10 .. a/80, about a minute)
+convergence-quick:
+	@$(PYTHON) scripts/hertz_convergence.py --levels 10,20,40,80 --cases plane,circle_vertical,circle_exact
 
 test: deps
-	python3 tests/run_tests.py
+	$(PYTHON) tests/run_tests.py
 
 # Hertz benchmarks refined from h = a/10 to a/160 (a few minutes): results/hertz_convergence.md
 convergence: deps
-	python3 scripts/hertz_convergence.py --cases plane,circle_vertical,circle_linearized,circle_exact
+	$(PYTHON) scripts/hertz_convergence.py --cases plane,circle_vertical,circle_linearized,circle_exact
 
 deps:
 	@bash scripts/install_deps.sh

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs what the suite needs on Debian/Ubuntu, skipping what is already there:
-# FreeFEM with its plugins (ff-Ipopt, iovtk, msh3, gsl), gmsh, python3, and OpenBLAS: Debian's
+# FreeFEM with its plugins (ff-Ipopt, iovtk, msh3, gsl), gmsh, python3 with matplotlib, and OpenBLAS: Debian's
 # MUMPS (IPOPT's linear solver) otherwise runs on the reference BLAS, and the factorisations
 # that dominate every contact solve take 4x longer (3D Hertz, 23.6k dofs: 53 s -> 12 s).
 # Called by every make target; uses sudo when not root.
@@ -19,6 +19,8 @@ have_plugin ff-Ipopt || missing+=(libfreefem++)
 command -v gmsh >/dev/null 2>&1 || missing+=(gmsh)
 command -v python3 >/dev/null 2>&1 || missing+=(python3)
 dpkg -s libopenblas0-pthread >/dev/null 2>&1 || missing+=(libopenblas0-pthread)
+# the report's figures: matplotlib for Debian's python3 (the Makefile runs /usr/bin/python3)
+dpkg -s python3-matplotlib >/dev/null 2>&1 || missing+=(python3-matplotlib)
 
 if [ ${#missing[@]} -eq 0 ]; then
   exit 0

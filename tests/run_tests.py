@@ -369,6 +369,61 @@ def test_oring_plates():
           len(forces) == 15 and all(b > a for a, b in zip(forces, forces[1:])), f"{len(forces)} rows")
 
 
+# ---------------------------------------------------------------- report
+def png_size(path):
+    """(width, height) of a PNG file, or None when it is not one."""
+    with open(path, "rb") as f:
+        head = f.read(24)
+    if len(head) < 24 or head[:8] != b"\x89PNG\r\n\x1a\n" or head[12:16] != b"IHDR":
+        return None
+    return int.from_bytes(head[16:20], "big"), int.from_bytes(head[20:24], "big")
+
+
+def test_report():
+    """The report step on a small set of results: every figure those results allow exists and
+    is a real PNG of a sensible size, the others are skipped, and the table lists every
+    benchmark (the ones that did not run as missing)."""
+    sys.path.insert(0, os.path.join(ROOT, "scripts"))
+    from benchmarks import BENCHMARKS
+    results = out("report results")
+    small = {"hertz_plane": ("benchmarks/hertz_plane.edp", []),
+             "clamped_square": ("benchmarks/clamped_square.edp", ["-n", "10"]),
+             "oring_plates": ("benchmarks/oring.edp", ["-case", "plates", "-steps", "3", "-h", "0.065"]),
+             "cube_2d_neohookean": ("benchmarks/cube.edp", ["-material", "neohookean", "-n", "3"])}
+    for name, (script, args) in small.items():
+        run_driver(script, args, os.path.join(results, name))
+    for level in (10, 20):
+        run_driver("benchmarks/hertz_plane.edp", ["-h", repr(0.0550867877 / level)],
+                   os.path.join(results, "convergence", f"plane_a{level}"))
+    # the Makefile's interpreter: Debian's, where the deps script installs matplotlib
+    python = "/usr/bin/python3" if os.path.exists("/usr/bin/python3") else sys.executable
+    proc = subprocess.run([python, os.path.join(ROOT, "scripts", "report.py"), "--results", results],
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    check("report: report.py exits 0", proc.returncode == 0, proc.stdout.strip().splitlines()[-1:])
+    expected = ["hertz_plane_pressure.png", "hertz_plane_deformed.png", "clamped_square_pressure.png",
+                "clamped_square_deformed.png", "oring_plates_force.png", "oring_plates_deformed.png", "cube_deformed.png",
+                "convergence_hertz.png", "convergence_clamped.png", "iterations_vs_dofs.png"]
+    for f in expected:
+        path = os.path.join(results, "figures", f)
+        size = png_size(path) if os.path.exists(path) else None
+        check(f"report: {f} is a PNG of at least 400 x 300 pixels", size is not None and size[0] >= 400 and size[1] >= 300, str(size))
+    absent = [f for f in ("hertz_circle_pressure.png", "hertz_sphere_pressure.png", "oring_groove_forces.png")
+              if os.path.exists(os.path.join(results, "figures", f))]
+    check("report: no figure is drawn for benchmarks that did not run", not absent, str(absent))
+    md = open(os.path.join(results, "REPORT.md")).read() if os.path.exists(os.path.join(results, "REPORT.md")) else ""
+    rows = [l for l in md.splitlines() if l.startswith("| ")]
+    listed = {l.split("|")[1].strip() for l in rows}
+    check("report: the table lists every benchmark", all(n in listed for n, _, _ in BENCHMARKS),
+          str(sorted({n for n, _, _ in BENCHMARKS} - listed)))
+    check("report: benchmarks that did not run are marked missing",
+          any(l.startswith("| hertz_sphere |") and "missing" in l for l in rows))
+    check("report: the clamped square is compared with its stored reference",
+          any(l.startswith("| clamped_square | contact_force |") and l.split("|")[4].strip() != "-" for l in rows))
+    html_path = os.path.join(results, "report.html")
+    check("report: report.html embeds its figures", os.path.exists(html_path)
+          and open(html_path).read().count("data:image/png;base64,") == len(expected))
+
+
 # ---------------------------------------------------------------- bad input
 def expect_error(label, args, word, out_dir=None):
     o = out_dir or out("bad-" + label)
@@ -415,7 +470,7 @@ def test_ipopt_failure_is_reported():
 def main():
     tests = [test_law_derivatives, test_obstacle_derivatives, test_cube, test_cube_second_parameter_set, test_cube_on_foundation,
              test_hertz_plane, test_hertz_circle, test_hertz_hyperelastic, test_hertz_bad_input,
-             test_clamped_square, test_hertz_sphere, test_oring_groove, test_oring_plates, test_output_contract,
+             test_clamped_square, test_hertz_sphere, test_oring_groove, test_oring_plates, test_report, test_output_contract,
              test_working_folder_untouched, test_bad_input, test_ipopt_failure_is_reported]
     only = sys.argv[1:]
     for test in tests:

@@ -1,0 +1,471 @@
+#!/usr/bin/env python3
+"""The report of `make run`: results/REPORT.md and a self-contained results/report.html.
+One table of every benchmark and quantity, then a section per benchmark with its figures
+(PNG, matplotlib) and the command that reproduces it.
+    report.py [--results DIR]   (default: results/ in the repository)
+Works with whatever summaries exist: a benchmark that did not run is listed as missing."""
+
+import argparse
+import base64
+import csv
+import html
+import json
+import math
+import os
+import sys
+
+import matplotlib
+import matplotlib.ticker
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.collections import PolyCollection  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from benchmarks import BENCHMARKS  # noqa: E402
+from freefem import ROOT  # noqa: E402
+import vtu  # noqa: E402
+
+RESULTS = os.path.join(ROOT, "results")
+FIGURES = "figures"
+
+
+# ---------------------------------------------------------------- data
+def summary(name):
+    path = os.path.join(RESULTS, name, "summary.json")
+    return json.load(open(path)) if os.path.exists(path) else None
+
+
+def read_csv(path):
+    if not os.path.exists(path):
+        return None
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def column(rows, key):
+    return np.array([float(r[key]) for r in rows])
+
+
+def command(name):
+    for n, script, args in BENCHMARKS:
+        if n == name:
+            return f"FreeFem++ {script} {' '.join(args)} -out results/{name}".replace("  ", " ")
+    return ""
+
+
+def params_text(s, keys):
+    p = s["parameters"]
+    return ", ".join(f"{k} = {p[k]:g}" if isinstance(p[k], (int, float)) else f"{k} = {p[k]}" for k in keys if k in p)
+
+
+# ---------------------------------------------------------------- figures
+def save(fig, filename):
+    os.makedirs(os.path.join(RESULTS, FIGURES), exist_ok=True)
+    fig.savefig(os.path.join(RESULTS, FIGURES, filename), dpi=110, bbox_inches="tight")
+    plt.close(fig)
+    return filename
+
+
+def fig_hertz_pressure(names, filename, title, unit_x="x (m)"):
+    """Nodal contact pressure against Hertz's ellipse, for one or more runs."""
+    runs = [(n, summary(n), read_csv(os.path.join(RESULTS, n, "pressure.csv"))) for n in names]
+    runs = [r for r in runs if r[1] and r[2]]
+    if not runs:
+        return None
+    fig, ax = plt.subplots(figsize=(7, 4.2))
+    markers = ["o", "s", "^", "v"]
+    s0 = runs[0][1]
+    a, pmax = s0["results"]["a"]["reference"], s0["results"]["p_max"]["reference"]
+    xs = np.linspace(0, a, 400)
+    ax.plot(xs, pmax * np.sqrt(np.clip(1 - (xs / a) ** 2, 0, None)), "k-", lw=1.5, label="Hertz")
+    for i, (n, s, rows) in enumerate(runs):
+        x = column(rows, rows[0] and list(rows[0].keys())[0])
+        p = column(rows, "pressure")
+        form = s["parameters"].get("constraint", "")
+        label = f"{n} ({form}): a err {s['results']['a']['rel_error']:.1e}" if form else \
+            f"{n}: a err {s['results']['a']['rel_error']:.1e}"
+        ax.plot(x, p, markers[i % 4], ms=4, mfc="none", label=label)
+    ax.set_xlim(0, 1.4 * a)
+    ax.set_xlabel(unit_x)
+    ax.set_ylabel("contact pressure (Pa)")
+    ax.set_title(title, fontsize=10)
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    return save(fig, filename)
+
+
+def fig_clamped_pressure(name, filename):
+    s, rows = summary(name), read_csv(os.path.join(RESULTS, name, "pressure.csv"))
+    ref_path = os.path.join(ROOT, "reference", "clamped_square.json")
+    if not s or not rows:
+        return None
+    fig, ax = plt.subplots(figsize=(7, 4.2))
+    ax.plot(column(rows, "y"), column(rows, "pressure"), "o-", ms=3, label=f"computed, P{s['parameters']['order']} n = {s['parameters']['n']}")
+    if os.path.exists(ref_path):
+        ref = json.load(open(ref_path))["reference"]
+        ys = [0.7, 0.8, 0.9, 0.95]
+        ax.plot(ys, [ref[f"pressure_at_y{y:g}"]["value"] for y in ys], "kx", ms=9, mew=2,
+                label="mesh-converged reference (P2, n = 25..200, Richardson)")
+        ax.axvline(ref["separation_y"]["value"], color="gray", ls="--", lw=1, label=f"reference separation y = {ref['separation_y']['value']:.4f}")
+    ax.set_xlabel("y along the contact side x = 0 (m)")
+    ax.set_ylabel("contact pressure (Pa)")
+    ax.set_title("Clamped square under its own weight: pressure on the wall\n" +
+                 params_text(s, ["E", "nu", "rho", "gravity"]), fontsize=10)
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    return save(fig, filename)
+
+
+def draw_mesh(ax, x, u, tris, vm, amplification):
+    deformed = x + amplification * u
+    polys = deformed[tris]
+    coll = PolyCollection(polys, array=vm, cmap="viridis", edgecolors="face", linewidths=0.2)
+    ax.add_collection(coll)
+    ax.set_aspect("equal")
+    return coll
+
+
+def fig_deformed(name, filename, title, obstacles, zoom=None, slice3d=False, amplify_to=0.05, amplify_below=1e-3):
+    """Deformed body coloured by von Mises stress, obstacles drawn (functions of the axes).
+    Displacements below amplify_below of the body size are amplified to amplify_to of it."""
+    s = summary(name)
+    vtus = sorted(f for f in os.listdir(os.path.join(RESULTS, name)) if f.endswith(".vtu")) if s else []
+    if not vtus:
+        return None
+    path = os.path.join(RESULTS, name, vtus[-1])
+    x, u, tris, vm = vtu.slice_3d(path) if slice3d else vtu.triangles_2d(path)
+    size = np.ptp(x, axis=0).max()
+    umax = np.abs(u).max()
+    # amplified only when invisible at true scale: amplifying a body pressed on an obstacle
+    # would push it through the obstacle (its rigid approach grows too)
+    amplification = amplify_to * size / umax if 0 < umax < amplify_below * size else 1.0
+    panels = [None] + ([zoom] if zoom else [])
+    fig, axes = plt.subplots(1, len(panels), figsize=(6.5 * len(panels), 5), squeeze=False, layout="constrained")
+    for ax, window in zip(axes[0], panels):
+        amp = 1.0 if window else amplification
+        coll = draw_mesh(ax, x, u, tris, vm, amp)
+        for draw in obstacles:
+            draw(ax)
+        if window:
+            ax.set_xlim(window[0], window[1])
+            ax.set_ylim(window[2], window[3])
+            ax.set_title("near the contact (true scale)", fontsize=9)
+        else:
+            ax.autoscale_view()
+            lo, hi = ax.get_xlim(), ax.get_ylim()
+            pad = 0.05 * size
+            ax.set_xlim(lo[0] - pad, lo[1] + pad)
+            ax.set_ylim(hi[0] - pad, hi[1] + pad)
+            ax.set_title(f"displacement x {amplification:.3g}" if amplification != 1 else "true scale", fontsize=9)
+        ax.set_xlabel("x (m)")
+        ax.set_ylabel("z (m)" if slice3d else "y (m)")
+        fig.colorbar(coll, ax=ax, label="von Mises stress (Pa)", shrink=0.8)
+    fig.suptitle(title, fontsize=10)
+    return save(fig, filename)
+
+
+def line(horizontal, position, label):
+    def draw(ax):
+        (ax.axhline if horizontal else ax.axvline)(position, color="crimson", lw=2, label=label)
+        if label:
+            ax.legend(fontsize=8, loc="upper right")
+    return draw
+
+
+def hline(y, label):
+    return line(True, y, label)
+
+
+def vline(x, label):
+    return line(False, x, label)
+
+
+def arc(R2, label):
+    def draw(ax):
+        xs = np.linspace(-0.6 * R2, 0.6 * R2, 300)
+        ax.plot(xs, np.sqrt(R2 ** 2 - xs ** 2) - R2, color="crimson", lw=2, label=label)
+        ax.legend(fontsize=8, loc="upper right")
+    return draw
+
+
+def fig_oring_plates(name, filename):
+    s, rows = summary(name), read_csv(os.path.join(RESULTS, name, "force_squeeze.csv"))
+    if not s or not rows:
+        return None
+    c = column(rows, "c")
+    fig, ax = plt.subplots(figsize=(7, 4.2))
+    ax.plot(c, column(rows, "force_per_length"), "o-", ms=4, label="computed (plane strain, P1)")
+    cs = np.linspace(0, c.max(), 200)
+    lindley = np.interp(cs, np.concatenate([[0], c]), np.concatenate([[0], column(rows, "lindley")]))
+    ax.plot(cs, lindley, "k--", label="Lindley: E d (1.25 c^1.5 + 50 c^6)")
+    ax.set_xlabel("squeeze c = delta / (2R)")
+    ax.set_ylabel("force per unit length (N/m)")
+    ax.set_title("O-ring between plates: force against squeeze\n" + params_text(s, ["C10", "nu", "R", "h"]), fontsize=10)
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    return save(fig, filename)
+
+
+def fig_oring_groove(name, filename):
+    s, rows = summary(name), read_csv(os.path.join(RESULTS, name, "face_forces.csv"))
+    if not s or not rows:
+        return None
+    closure = column(rows, "closure")
+    fig, ax = plt.subplots(figsize=(7, 4.2))
+    for key, style in (("floor", "o-"), ("wall", "s--"), ("ceiling", "^-"), ("opposite_wall", "v--")):
+        ax.plot(closure, column(rows, key), style, ms=4, mfc="none", label=key.replace("_", " "))
+    ax.set_xlabel("closure of the groove (m)")
+    ax.set_ylabel("force on the face (N/m)")
+    ax.set_title("O-ring in the closing groove: face forces\n" + params_text(s, ["C10", "nu", "R", "gap", "side"]), fontsize=10)
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    return save(fig, filename)
+
+
+def convergence_runs(case):
+    folder = os.path.join(RESULTS, "convergence")
+    runs = []
+    if os.path.isdir(folder):
+        for d in sorted(os.listdir(folder)):
+            if d.startswith(case + "_a"):
+                s = json.load(open(os.path.join(folder, d, "summary.json"))) if os.path.exists(os.path.join(folder, d, "summary.json")) else None
+                if s:
+                    runs.append((int(d.split("_a")[-1]), s))
+    return sorted(runs)
+
+
+def fraction_ticks(ax, denominators):
+    ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+    ax.set_xticks([1.0 / d for d in denominators])
+    ax.set_xticklabels([f"1/{d}" for d in denominators])
+
+
+def observed_order(h, e):
+    if len(h) < 2 or min(e) <= 0:
+        return float("nan")
+    return np.polyfit(np.log(h), np.log(e), 1)[0]
+
+
+def fig_convergence_hertz(filename):
+    cases = [c for c in ("plane", "circle_vertical", "circle_exact") if len(convergence_runs(c)) >= 2]
+    if not cases:
+        return None
+    fig, axes = plt.subplots(1, len(cases), figsize=(5.2 * len(cases), 4.2), squeeze=False)
+    for ax, case in zip(axes[0], cases):
+        runs = convergence_runs(case)
+        h = np.array([1.0 / level for level, _ in runs])
+        # a and p_max level off at the finite-disc limit (a few 1e-4), or at the 0.36 % the
+        # psi' u1 term costs the exact form: no single slope describes them
+        for key, style in (("a", "o-"), ("p_max", "s-")):
+            e = np.array([s["results"][key]["rel_error"] for _, s in runs])
+            ax.loglog(h, e, style, ms=4, label=key)
+        e = np.array([s["results"]["pressure_l2_rel_error"]["computed"] for _, s in runs])
+        ax.loglog(h, e, "^-", ms=4, label=f"L2 of p (observed order {observed_order(h, e):.2f})")
+        fraction_ticks(ax, [level for level, _ in runs])
+        ax.set_xlabel("element size in the contact zone h / a")
+        ax.set_ylabel("relative error against Hertz")
+        ax.set_title(f"Hertz {case.replace('_', ', ')}", fontsize=10)
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize=8)
+    fig.suptitle("Convergence of the Hertz benchmarks (P1, linear elasticity)", fontsize=10)
+    return save(fig, filename)
+
+
+def fig_convergence_clamped(filename):
+    path = os.path.join(ROOT, "reference", "clamped_square.json")
+    if not os.path.exists(path):
+        return None
+    data = json.load(open(path))
+    p2 = [r for r in data["runs"] if r["order"] == 2]
+    h = np.array([1.0 / r["n"] for r in p2[:-1]])
+    fig, ax = plt.subplots(figsize=(6, 4.2))
+    for key, style in (("contact_force", "o-"), ("pressure_at_y0.8", "s-"), ("pressure_at_y0.9", "^-"),
+                       ("centre_of_pressure_y", "v-")):
+        ref = data["reference"][key]["value"]
+        e = np.array([abs(r["values"][key] - ref) / abs(ref) for r in p2[:-1]])
+        if min(e) > 0:
+            ax.loglog(h, e, style, ms=4, label=f"{key} (slope {observed_order(h, e):.2f})")
+    fraction_ticks(ax, [r["n"] for r in p2[:-1]])
+    ax.set_xlabel("element size h (m)")
+    ax.set_ylabel("relative difference to the reference")
+    ax.set_title("Clamped square, P2: convergence towards the stored reference\n(the finest level, n = 200, is part of the reference)", fontsize=10)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=8)
+    return save(fig, filename)
+
+
+def fig_iterations(filename):
+    fig, ax = plt.subplots(figsize=(6, 4.2))
+    plotted = False
+    for case, style in (("plane", "o-"), ("circle_vertical", "s-"), ("circle_exact", "^-")):
+        runs = convergence_runs(case)
+        if runs:
+            ax.semilogx([s["ndof"] for _, s in runs], [s["ipopt_iterations"] for _, s in runs], style, label=f"Hertz {case}")
+            plotted = True
+    path = os.path.join(ROOT, "reference", "clamped_square.json")
+    if os.path.exists(path):
+        runs = [r for r in json.load(open(path))["runs"] if r["order"] == 2]
+        ax.semilogx([r["ndof"] for r in runs], [r["iterations"] for r in runs], "v-", label="clamped square P2")
+        plotted = True
+    if not plotted:
+        plt.close(fig)
+        return None
+    ax.set_ylim(0, 25)
+    ax.set_xlabel("degrees of freedom")
+    ax.set_ylabel("IPOPT iterations")
+    ax.set_title("IPOPT iterations against problem size (exact Hessian)", fontsize=10)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=8)
+    return save(fig, filename)
+
+
+# ---------------------------------------------------------------- sections
+def sections():
+    """(title, benchmark names, figure builders) for each section of the report."""
+    s = summary("hertz_circle_exact") or summary("hertz_circle_vertical") or {"parameters": {"R2": 1.2}}
+    R2 = s["parameters"].get("R2", 1.2)
+    plane = summary("hertz_plane")
+    a = plane["results"]["a"]["reference"] if plane else 0.055
+    circle_a = s["results"]["a"]["reference"] if "results" in s else 0.039
+    groove = summary("oring_groove")
+    side = groove["parameters"]["side"] if groove else 1.0
+    plates = summary("oring_plates")
+    plate_y = plates["parameters"]["R"] * (1 - plates["parameters"]["cmax"]) if plates else 0.36
+    zoom = lambda r: (0, 2.5 * r, -0.4 * r, 1.6 * r)  # noqa: E731
+    return [
+        ("Hertz contact on a rigid plane (preprint 4.2.1)", ["hertz_plane", "hertz_plane_neohookean"], [
+            lambda: fig_hertz_pressure(["hertz_plane", "hertz_plane_neohookean"], "hertz_plane_pressure.png",
+                                       "Hertz, disc on a rigid plane: contact pressure\nE = 2.1e9 Pa, nu = 0.3, R = 1 m, f = 2.75e6 Pa, h = a/30"),
+            lambda: fig_deformed("hertz_plane", "hertz_plane_deformed.png", "Hertz, disc on a rigid plane: von Mises stress",
+                                 [hline(0, "rigid plane")], zoom=zoom(a))]),
+        ("Hertz contact on a rigid cylinder (preprint 4.2.2)", ["hertz_circle_exact", "hertz_circle_linearized", "hertz_circle_vertical"], [
+            lambda: fig_hertz_pressure(["hertz_circle_exact", "hertz_circle_linearized", "hertz_circle_vertical"],
+                                       "hertz_circle_pressure.png",
+                                       f"Hertz, disc on a rigid cylinder (spline): the three constraint forms\nE = 2.1e5 Pa, nu = 0.3, R1 = 1 m, R2 = {R2:g} m, f = 250 Pa, h = a/30"),
+            lambda: fig_deformed("hertz_circle_exact", "hertz_circle_deformed.png",
+                                 "Hertz, disc on a rigid cylinder, exact form (42): von Mises stress",
+                                 [arc(R2, f"rigid cylinder R2 = {R2:g} m")], zoom=zoom(circle_a))]),
+        ("3D Hertz: a hemisphere on a rigid plane", ["hertz_sphere"], [
+            lambda: fig_hertz_pressure(["hertz_sphere"], "hertz_sphere_pressure.png",
+                                       "3D Hertz, hemisphere on a rigid plane: contact pressure against r\nE = 2.1e5 Pa, nu = 0.3, R = 1 m, f = 100 Pa",
+                                       unit_x="r (m)"),
+            lambda: fig_deformed("hertz_sphere", "hertz_sphere_deformed.png",
+                                 "3D Hertz: von Mises stress on the symmetry plane y = 0", [hline(0, "rigid plane")],
+                                 zoom=(0, 0.25, -0.04, 0.16), slice3d=True)]),
+        ("Clamped square under its own weight (preprint 4.3)", ["clamped_square"], [
+            lambda: fig_clamped_pressure("clamped_square", "clamped_square_pressure.png"),
+            lambda: fig_deformed("clamped_square", "clamped_square_deformed.png",
+                                 "Clamped square on a rigid wall: von Mises stress", [vline(0, "rigid wall")])]),
+        ("O-ring gasket (preprint section 5)", ["oring_groove", "oring_plates"], [
+            lambda: fig_oring_groove("oring_groove", "oring_groove_forces.png"),
+            lambda: fig_deformed("oring_groove", "oring_groove_deformed.png", "O-ring in the closed groove: von Mises stress",
+                                 [hline(0, "rigid parts"), vline(0, None), hline(side, None), vline(side, None)]),
+            lambda: fig_oring_plates("oring_plates", "oring_plates_force.png"),
+            lambda: fig_deformed("oring_plates", "oring_plates_deformed.png",
+                                 "O-ring between plates at c = 0.3 (quarter): von Mises stress", [hline(plate_y, "rigid plate")])]),
+        ("Hyperelastic cube (Code_Aster SSNV187, preprint 4.1)",
+         [n for n, _, _ in BENCHMARKS if n.startswith("cube")], [
+            lambda: fig_deformed("cube_2d_neohookean", "cube_deformed.png",
+                                 "Cube, Neo-Hookean, plane strain: von Mises stress (homogeneous)", [])]),
+        ("Convergence and solver effort", [], [
+            lambda: fig_convergence_hertz("convergence_hertz.png"),
+            lambda: fig_convergence_clamped("convergence_clamped.png"),
+            lambda: fig_iterations("iterations_vs_dofs.png")]),
+    ]
+
+
+def stored_reference(name):
+    """Mesh-converged references kept in reference/ (benchmarks without an analytic answer)."""
+    path = os.path.join(ROOT, "reference", name + ".json")
+    return {q: v["value"] for q, v in json.load(open(path))["reference"].items()} if os.path.exists(path) else {}
+
+
+def results_table():
+    header = ["benchmark", "quantity", "computed", "reference", "rel. error", "DOFs", "IPOPT it.", "time (s)", "status"]
+    rows = []
+    for name, _, _ in BENCHMARKS:
+        s = summary(name)
+        if s is None:
+            rows.append([name, "-", "-", "-", "-", "-", "-", "-", "missing"])
+            continue
+        stored = stored_reference(name)
+        for q, r in s["results"].items():
+            if r["reference"] is None and q in stored:
+                r = dict(r, reference=stored[q], rel_error=abs(r["computed"] - stored[q]) / abs(stored[q]))
+            if r["reference"] is None and not (q.endswith("_rel_error") or q == "max_penetration"):
+                continue
+            ref = "-" if r["reference"] is None else f"{r['reference']:.7g}"
+            err = "-" if r["rel_error"] is None else f"{r['rel_error']:.2e}"
+            rows.append([name, q, f"{r['computed']:.7g}", ref, err, str(s["ndof"]), str(s["ipopt_iterations"]),
+                         f"{s['wall_time_s']:.1f}", s["ipopt_status"]])
+    return header, rows
+
+
+def main():
+    global RESULTS
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--results", default=RESULTS)
+    RESULTS = os.path.abspath(parser.parse_args().results)
+    header, rows = results_table()
+    md = ["# Report", "", "Every benchmark and quantity; `rel. error` is against the reference named in the "
+          "README (exact, analytic or mesh-converged).", "",
+          "| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    md += ["| " + " | ".join(r) + " |" for r in rows]
+    body = [("table", header, rows)]
+    produced, missing = [], []
+    for title, names, builders in sections():
+        md += ["", f"## {title}", ""]
+        cmds = [command(n) for n in names if command(n)]
+        if cmds:
+            md += ["```sh"] + cmds + ["```", ""]
+        figures = []
+        for build in builders:
+            try:
+                f = build()
+            except Exception as exc:  # a figure that cannot be drawn is reported, not fatal
+                print(f"report: figure failed in '{title}': {exc!r}", flush=True)
+                f = None
+            if f:
+                figures.append(f)
+                produced.append(f)
+                md += [f"![{f}]({FIGURES}/{f})", ""]
+            else:
+                missing.append(title)
+        body.append((title, cmds, figures))
+    with open(os.path.join(RESULTS, "REPORT.md"), "w") as fh:
+        fh.write("\n".join(md) + "\n")
+    write_html(body)
+    print(f"report: {len(produced)} figures, results/REPORT.md and results/report.html written", flush=True)
+    return 0
+
+
+def write_html(body):
+    parts = ["<!doctype html><html><head><meta charset='utf-8'><title>Contact benchmarks report</title>",
+             "<style>body{font-family:sans-serif;max-width:1200px;margin:auto;padding:1em}"
+             "table{border-collapse:collapse;font-size:12px}td,th{border:1px solid #ccc;padding:2px 6px}"
+             "th{background:#eee}img{max-width:100%;margin:8px 0}pre{background:#f4f4f4;padding:6px}</style>",
+             "</head><body><h1>Frictionless contact benchmarks: report</h1>"]
+    for item in body:
+        if item[0] == "table":
+            _, header, rows = item
+            parts.append("<table><tr>" + "".join(f"<th>{html.escape(h)}</th>" for h in header) + "</tr>")
+            for r in rows:
+                parts.append("<tr>" + "".join(f"<td>{html.escape(c)}</td>" for c in r) + "</tr>")
+            parts.append("</table>")
+            continue
+        title, cmds, figures = item
+        parts.append(f"<h2>{html.escape(title)}</h2>")
+        if cmds:
+            parts.append("<pre>" + html.escape("\n".join(cmds)) + "</pre>")
+        for f in figures:
+            data = base64.b64encode(open(os.path.join(RESULTS, FIGURES, f), "rb").read()).decode()
+            parts.append(f"<img alt='{html.escape(f)}' src='data:image/png;base64,{data}'>")
+    parts.append("</body></html>")
+    with open(os.path.join(RESULTS, "report.html"), "w") as fh:
+        fh.write("\n".join(parts))
+
+
+if __name__ == "__main__":
+    sys.exit(main())
