@@ -1,0 +1,98 @@
+#!/usr/bin/env python3
+"""Bad input for every driver: the cases the test suite checks (one `error:` line naming the
+problem, a non-zero exit, no summary.json) and the table in the README, printed by
+    python3 tests/bad_inputs.py"""
+
+import os
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scripts"))
+from freefem import run_driver  # noqa: E402
+
+CUBE, PLANE, CIRCLE = "benchmarks/cube.edp", "benchmarks/hertz_plane.edp", "benchmarks/hertz_circle.edp"
+SPHERE, CLAMPED, ORING = "benchmarks/hertz_sphere.edp", "benchmarks/clamped_square.edp", "benchmarks/oring.edp"
+
+# (driver, arguments ({tmp} is a scratch folder holding the files of make_files), the word the
+# error line must contain)
+CASES = [
+    (CUBE, ["-nu", "0.5"], "-nu"),
+    (CUBE, ["-nu", "-1"], "-nu"),
+    (CUBE, ["-C10", "-1"], "-C10"),
+    (CUBE, ["-C10", "0", "-C01", "0"], "-C10"),
+    (CUBE, ["-pressure", "abc"], "-pressure"),
+    (CUBE, ["-dim", "4"], "-dim"),
+    (CUBE, ["-n", "0"], "-n"),
+    (CUBE, ["-nuu", "0.3"], "-nuu"),
+    (CUBE, ["-material", "rubber"], "-material"),
+    (CUBE, ["-nu", "0.3", "-nu", "0.4"], "-nu"),
+    (CUBE, ["-steps", "1.5"], "-steps"),
+    (PLANE, ["-R", "0"], "-R"),
+    (PLANE, ["-E", "-2e9"], "-E"),
+    (PLANE, ["-pressure", "0"], "-pressure"),
+    (PLANE, ["-constraint", "exakt"], "-constraint"),
+    (PLANE, ["-material", "steel"], "-material"),
+    (PLANE, ["-h", "0"], "-h"),
+    (PLANE, ["-zone", "2"], "-zone"),
+    (PLANE, ["-gap", "-1e-3"], "penetrates"),
+    (PLANE, ["-mesh", "{tmp}/missing.msh"], "-mesh"),
+    (PLANE, ["-mesh", "{tmp}/corrupt.msh"], "-mesh"),
+    (CIRCLE, ["-R2", "0"], "-R2"),
+    (CIRCLE, ["-R", "-1"], "-R"),
+    (CIRCLE, ["-spline", "2"], "-spline"),
+    (CIRCLE, ["-splinepoints", "3"], "at least 4 points"),
+    (CIRCLE, ["-splinefile", "{tmp}/missing.txt"], "-splinefile"),
+    (CIRCLE, ["-splinefile", "{tmp}/decreasing.txt"], "increase"),
+    (CIRCLE, ["-splinefile", "{tmp}/garbled.txt"], "-splinefile"),
+    (CIRCLE, ["-gap", "-1e-3", "-spline", "0"], "penetrates"),
+    (SPHERE, ["-R", "0"], "-R"),
+    (SPHERE, ["-pressure", "-1"], "-pressure"),
+    (SPHERE, ["-mesh", "{tmp}/disc2d.msh"], "-mesh"),
+    (CLAMPED, ["-rho", "0"], "-rho"),
+    (CLAMPED, ["-E", "0"], "-E"),
+    (CLAMPED, ["-order", "3"], "-order"),
+    (CLAMPED, ["-n", "0"], "-n"),
+    (ORING, ["-case", "pipe"], "-case"),
+    (ORING, ["-C10", "0"], "-C10"),
+    (ORING, ["-nu", "0.5"], "-nu"),
+    (ORING, ["-cmax", "1"], "-cmax"),
+    (ORING, ["-side", "0.5"], "-side"),
+    (ORING, ["-h", "1"], "-h"),
+]
+
+
+def make_files(tmp):
+    """The bad files some cases read: a truncated mesh, a 2D mesh for the 3D driver, spline
+    data that goes backwards or holds a non-number."""
+    with open(os.path.join(tmp, "corrupt.msh"), "w") as f:
+        f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n10\n1 0 0 0\n2 1 0 0\n")
+    with open(os.path.join(tmp, "disc2d.msh"), "w") as f:
+        f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n2 1 0 0\n3 0 1 0\n$EndNodes\n"
+                "$Elements\n1\n1 2 2 1 1 1 2 3\n$EndElements\n")
+    with open(os.path.join(tmp, "decreasing.txt"), "w") as f:
+        f.write("0 0\n0.1 -0.01\n0.05 -0.002\n0.2 -0.03\n0.3 -0.04\n")
+    with open(os.path.join(tmp, "garbled.txt"), "w") as f:
+        f.write("# x y\n0 0\n0.1 abc\n")
+
+
+def run_case(driver, args, tmp, out_dir):
+    """(exit code, the first output line, whether a summary.json was left)."""
+    args = [a.replace("{tmp}", tmp) for a in args]
+    code, output, _ = run_driver(driver, args, out_dir)
+    first = output.strip().splitlines()[0] if output.strip() else ""
+    return code, first, os.path.exists(os.path.join(out_dir, "summary.json"))
+
+
+def main():
+    tmp = tempfile.mkdtemp(prefix="bad-input-")
+    make_files(tmp)
+    print("| driver | input | message | exit code |\n|---|---|---|---|")
+    for i, (driver, args, _) in enumerate(CASES):
+        code, first, _ = run_case(driver, args, tmp, os.path.join(tmp, f"out{i}"))
+        shown = " ".join(args).replace(tmp, "/tmp")
+        message = first.replace(tmp, "/tmp").replace("|", "\\|")
+        print(f"| {os.path.basename(driver)} | `{shown}` | `{message}` | {code} |")
+
+
+if __name__ == "__main__":
+    main()
