@@ -25,6 +25,7 @@ from matplotlib.collections import PolyCollection  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from benchmarks import BENCHMARKS  # noqa: E402
 from freefem import ROOT  # noqa: E402
+import markdown  # noqa: E402
 import vtu  # noqa: E402
 
 RESULTS = os.path.join(ROOT, "results")
@@ -68,6 +69,16 @@ def save(fig, filename):
     return filename
 
 
+def finish(fig, ax, xlabel, ylabel, title, filename):
+    """Labels, title, legend and grid of a one-panel figure, saved under filename."""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title, fontsize=10)
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3, which="both")
+    return save(fig, filename)
+
+
 def fig_hertz_pressure(names, filename, title, unit_x="x (m)"):
     """Nodal contact pressure against Hertz's ellipse, for one or more runs."""
     runs = [(n, summary(n), read_csv(os.path.join(RESULTS, n, "pressure.csv"))) for n in names]
@@ -88,12 +99,7 @@ def fig_hertz_pressure(names, filename, title, unit_x="x (m)"):
             f"{n}: a err {s['results']['a']['rel_error']:.1e}"
         ax.plot(x, p, markers[i % 4], ms=4, mfc="none", label=label)
     ax.set_xlim(0, 1.4 * a)
-    ax.set_xlabel(unit_x)
-    ax.set_ylabel("contact pressure (Pa)")
-    ax.set_title(title, fontsize=10)
-    ax.legend(fontsize=8)
-    ax.grid(alpha=0.3)
-    return save(fig, filename)
+    return finish(fig, ax, unit_x, "contact pressure (Pa)", title, filename)
 
 
 def fig_clamped_pressure(name, filename):
@@ -109,13 +115,9 @@ def fig_clamped_pressure(name, filename):
         ax.plot(ys, [ref[f"pressure_at_y{y:g}"]["value"] for y in ys], "kx", ms=9, mew=2,
                 label="mesh-converged reference (P2, n = 25..200, Richardson)")
         ax.axvline(ref["separation_y"]["value"], color="gray", ls="--", lw=1, label=f"reference separation y = {ref['separation_y']['value']:.4f}")
-    ax.set_xlabel("y along the contact side x = 0 (m)")
-    ax.set_ylabel("contact pressure (Pa)")
-    ax.set_title("Clamped square under its own weight: pressure on the wall\n" +
-                 params_text(s, ["E", "nu", "rho", "gravity"]), fontsize=10)
-    ax.legend(fontsize=8)
-    ax.grid(alpha=0.3)
-    return save(fig, filename)
+    return finish(fig, ax, "y along the contact side x = 0 (m)", "contact pressure (Pa)",
+                  "Clamped square under its own weight: pressure on the wall\n" + params_text(s, ["E", "nu", "rho", "gravity"]),
+                  filename)
 
 
 def draw_mesh(ax, x, u, tris, vm, amplification):
@@ -190,38 +192,38 @@ def arc(R2, label):
     return draw
 
 
+def run_data(name, csv_name):
+    """(summary, rows of results/<name>/<csv_name>), or None when either is missing."""
+    s, rows = summary(name), read_csv(os.path.join(RESULTS, name, csv_name))
+    return (s, rows) if s and rows else None
+
+
 def fig_oring_plates(name, filename):
-    s, rows = summary(name), read_csv(os.path.join(RESULTS, name, "force_squeeze.csv"))
-    if not s or not rows:
+    data = run_data(name, "force_squeeze.csv")
+    if not data:
         return None
+    s, rows = data
     c = column(rows, "c")
     fig, ax = plt.subplots(figsize=(7, 4.2))
     ax.plot(c, column(rows, "force_per_length"), "o-", ms=4, label="computed (plane strain, P1)")
     cs = np.linspace(0, c.max(), 200)
-    lindley = np.interp(cs, np.concatenate([[0], c]), np.concatenate([[0], column(rows, "lindley")]))
-    ax.plot(cs, lindley, "k--", label="Lindley: E d (1.25 c^1.5 + 50 c^6)")
-    ax.set_xlabel("squeeze c = delta / (2R)")
-    ax.set_ylabel("force per unit length (N/m)")
-    ax.set_title("O-ring between plates: force against squeeze\n" + params_text(s, ["C10", "nu", "R", "h"]), fontsize=10)
-    ax.legend(fontsize=8)
-    ax.grid(alpha=0.3)
-    return save(fig, filename)
+    E, d = 6 * s["parameters"]["C10"], 2 * s["parameters"]["R"]   # Neo-Hookean: C01 = 0
+    ax.plot(cs, E * d * (1.25 * cs ** 1.5 + 50 * cs ** 6), "k--", label="Lindley: E d (1.25 c^1.5 + 50 c^6), E = 6 C10")
+    return finish(fig, ax, "squeeze c = delta / (2R)", "force per unit length (N/m)",
+                  "O-ring between plates: force against squeeze\n" + params_text(s, ["C10", "nu", "R", "h"]), filename)
 
 
 def fig_oring_groove(name, filename):
-    s, rows = summary(name), read_csv(os.path.join(RESULTS, name, "face_forces.csv"))
-    if not s or not rows:
+    data = run_data(name, "face_forces.csv")
+    if not data:
         return None
+    s, rows = data
     closure = column(rows, "closure")
     fig, ax = plt.subplots(figsize=(7, 4.2))
     for key, style in (("floor", "o-"), ("wall", "s--"), ("ceiling", "^-"), ("opposite_wall", "v--")):
         ax.plot(closure, column(rows, key), style, ms=4, mfc="none", label=key.replace("_", " "))
-    ax.set_xlabel("closure of the groove (m)")
-    ax.set_ylabel("force on the face (N/m)")
-    ax.set_title("O-ring in the closing groove: face forces\n" + params_text(s, ["C10", "nu", "R", "gap", "side"]), fontsize=10)
-    ax.legend(fontsize=8)
-    ax.grid(alpha=0.3)
-    return save(fig, filename)
+    return finish(fig, ax, "closure of the groove (m)", "force on the face (N/m)",
+                  "O-ring in the closing groove: face forces\n" + params_text(s, ["C10", "nu", "R", "gap", "side"]), filename)
 
 
 def convergence_runs(case):
@@ -288,12 +290,9 @@ def fig_convergence_clamped(filename):
         if min(e) > 0:
             ax.loglog(h, e, style, ms=4, label=f"{key} (slope {observed_order(h, e):.2f})")
     fraction_ticks(ax, [r["n"] for r in p2[:-1]])
-    ax.set_xlabel("element size h (m)")
-    ax.set_ylabel("relative difference to the reference")
-    ax.set_title("Clamped square, P2: convergence towards the stored reference\n(the finest level, n = 200, is part of the reference)", fontsize=10)
-    ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=8)
-    return save(fig, filename)
+    return finish(fig, ax, "element size h (m)", "relative difference to the reference",
+                  "Clamped square, P2: convergence towards the stored reference\n(the finest level, n = 200, is part of the reference)",
+                  filename)
 
 
 def fig_iterations(filename):
@@ -313,12 +312,7 @@ def fig_iterations(filename):
         plt.close(fig)
         return None
     ax.set_ylim(0, 25)
-    ax.set_xlabel("degrees of freedom")
-    ax.set_ylabel("IPOPT iterations")
-    ax.set_title("IPOPT iterations against problem size (exact Hessian)", fontsize=10)
-    ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=8)
-    return save(fig, filename)
+    return finish(fig, ax, "degrees of freedom", "IPOPT iterations", "IPOPT iterations against problem size (exact Hessian)", filename)
 
 
 # ---------------------------------------------------------------- sections
@@ -410,9 +404,7 @@ def main():
     RESULTS = os.path.abspath(parser.parse_args().results)
     header, rows = results_table()
     md = ["# Report", "", "Every benchmark and quantity; `rel. error` is against the reference named in the "
-          "README (exact, analytic or mesh-converged).", "",
-          "| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    md += ["| " + " | ".join(r) + " |" for r in rows]
+          "README (exact, analytic or mesh-converged).", "", markdown.table(header, rows)]
     body = [("table", header, rows)]
     produced, missing = [], []
     for title, names, builders in sections():

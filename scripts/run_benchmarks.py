@@ -12,6 +12,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from benchmarks import BENCHMARKS  # noqa: E402
 from freefem import ROOT, read_summary, run_driver  # noqa: E402
+import markdown  # noqa: E402
 
 
 def fmt(value, spec):
@@ -45,14 +46,10 @@ def table():
             rows.append((name, quantity, r["computed"], r["reference"], r["rel_error"],
                          summary["ndof"], summary["ipopt_iterations"], summary["wall_time_s"]))
     header = ("benchmark", "quantity", "computed", "reference", "rel. error", "DOFs", "IPOPT it.", "time (s)")
-    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    for b, q, c, r, e, n, it, t in rows:
-        lines.append(f"| {b} | {q} | {fmt(c, '.10g')} | {fmt(r, '.10g')} | {fmt(e, '.2e')} | {n} | {it} | {t:.2f} |")
-    text = "\n".join(lines)
+    text = markdown.table(header, [(b, q, fmt(c, ".10g"), fmt(r, ".10g"), fmt(e, ".2e"), n, it, f"{t:.2f}")
+                                   for b, q, c, r, e, n, it, t in rows])
     print("\n" + text)
-    os.makedirs(os.path.join(ROOT, "results"), exist_ok=True)
-    with open(os.path.join(ROOT, "results", "RESULTS.md"), "w") as f:
-        f.write("# Results\n\n" + text + "\n")
+    markdown.write(os.path.join(ROOT, "results", "RESULTS.md"), "Results", text)
     if missing:
         print(f"\nmissing or failed: {', '.join(missing)}")
     return 1 if missing else 0
