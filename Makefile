@@ -1,7 +1,7 @@
 # Quick start: `make` runs every benchmark and writes the report (results/REPORT.md and
 # results/report.html); `make test` runs the test suite. Both install missing dependencies
 # first. Benchmarks run in parallel, one per core (JOBS=1 for one at a time).
-.PHONY: run report table test convergence sweep deps clean
+.PHONY: run report table test convergence sweep bench deps clean
 # Debian's interpreter, where the deps script installs matplotlib (a pyenv shim may shadow it)
 PYTHON := $(shell test -x /usr/bin/python3 && echo /usr/bin/python3 || echo python3)
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
@@ -27,6 +27,11 @@ test: deps
 # Hertz benchmarks refined from h = a/10 to a/160 (a few minutes): results/hertz_convergence.md
 convergence: deps
 	$(PYTHON) scripts/hertz_convergence.py --cases plane,circle_vertical,circle_linearized,circle_exact
+
+# timings: Hertz from 10k to 1M DOFs, the cost of contact, IPOPT against Newton, 3D
+# (about 15 minutes): results/bench/BENCH.md
+bench: deps
+	$(PYTHON) scripts/bench.py
 
 # randomized parameter sets, checked for what must always hold (fixed seed; N=200 by default)
 N ?= 200

@@ -444,6 +444,22 @@ def test_step_cutting():
           f"{len(cuts)} printed, {s and s['step_cuts']} counted")
 
 
+def test_bench_smoke():
+    """`make bench` at its smallest level of each study (no timing is asserted: the numbers
+    are the benchmark's record): it runs, writes bench.json with every study, and the
+    contact solve, Newton and the sphere give their answers."""
+    proc = subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "bench.py"), "--smoke", "--out", out("bench")],
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    path = os.path.join(out("bench"), "bench.json")
+    data = json.load(open(path)) if os.path.exists(path) else {}
+    check("bench smoke: exits 0 with the three studies in bench.json", proc.returncode == 0 and data.get("smoke")
+          and data["hertz_plane"] and data["cube_ipopt_vs_newton"] and data["hertz_sphere"], proc.stdout.strip().splitlines()[-1:])
+    if data.get("cube_ipopt_vs_newton"):
+        c = data["cube_ipopt_vs_newton"][0]
+        check("bench smoke: IPOPT and Newton both give the exact cube (w to 1e-8)",
+              c["ipopt_w_error"] <= 1e-8 and c["newton_w_error"] <= 1e-8, f"{c['ipopt_w_error']:.1e}, {c['newton_w_error']:.1e}")
+
+
 def test_sweep_smoke():
     """`make sweep` at its smallest: 3 random cases (one per driver), every check met."""
     proc = subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "sweep.py"), "--n", "3", "--seed", "7",
@@ -496,7 +512,7 @@ def main():
              test_hertz_plane, test_hertz_circle, test_hertz_hyperelastic,
              test_clamped_square, test_hertz_sphere, test_oring_groove, test_oring_plates, test_report, test_output_contract,
              test_working_folder_untouched, test_bad_input, test_ipopt_failure_is_reported,
-             test_hard_cases, test_step_cutting, test_sweep_smoke]
+             test_hard_cases, test_step_cutting, test_sweep_smoke, test_bench_smoke]
     only = sys.argv[1:]
     for test in tests:
         if only and not any(o in test.__name__ for o in only):

@@ -1,0 +1,182 @@
+#!/usr/bin/env python3
+"""`make bench`: how fast the suite solves its problems, as ratios and iteration counts.
+Studies (timings are medians of --repeat runs below 200k DOFs, single runs above):
+ 1. Hertz plane, P1 linear elasticity, refined from ~10k to ~1M DOFs: DOFs, contact candidates,
+    IPOPT iterations, wall time split into mesh / IPOPT internals (MUMPS) / callbacks / rest,
+    peak memory, errors of a and p_max.
+ 2. The cost of contact: the same disc supported instead of in contact, one direct MUMPS
+    solve (bench/supported_disc.edp); ratio of the contact solve to it.
+ 3. Hyperelastic without contact: the 3D Neo-Hookean cube, IPOPT against plain Newton.
+ 4. The 3D Hertz sphere on a fine mesh.
+Writes bench.json and BENCH.md in results/bench (--out).
+    bench.py [--smoke] [--repeat 3] [--out results/bench]"""
+
+import argparse
+import json
+import math
+import os
+import re
+import statistics
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from freefem import ROOT, read_summary  # noqa: E402
+import markdown  # noqa: E402
+
+A_HERTZ = 0.0550867877   # Hertz half-width of the default hertz_plane (m)
+A_SPHERE = 0.1005577     # of the default hertz_sphere (m)
+OUT = "results/bench"      # --out
+
+
+def timed_run(script, args, out_dir):
+    """Runs FreeFem++ under GNU time: (summary, wall seconds, peak RSS in MB, output)."""
+    command = ["/usr/bin/time", "-f", "BENCH %e %M", "FreeFem++", "-nw", script] + args + ["-out", out_dir]
+    proc = subprocess.run(command, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    m = re.findall(r"BENCH ([\d.]+) (\d+)", proc.stdout)
+    wall, rss = (float(m[-1][0]), int(m[-1][1]) / 1024) if m else (float("nan"), float("nan"))
+    return read_summary(out_dir), wall, rss, proc.stdout
+
+
+def ipopt_cpu(out_dir):
+    """CPU seconds inside IPOPT (MUMPS and the algorithm) and in our callbacks, all steps."""
+    internal = callbacks = 0.0
+    folder = os.path.join(ROOT, out_dir)
+    for f in os.listdir(folder):
+        if f.startswith("ipopt_step") and f.endswith(".log"):
+            text = open(os.path.join(folder, f)).read()
+            for value in re.findall(r"Total CPU secs in IPOPT \(w/o function evaluations\)\s*=\s*([\d.]+)", text):
+                internal += float(value)
+            for value in re.findall(r"Total CPU secs in NLP function evaluations\s*=\s*([\d.]+)", text):
+                callbacks += float(value)
+    return internal, callbacks
+
+
+def median_runs(repeat, script, args, out_dir):
+    runs = [timed_run(script, args, out_dir) for _ in range(repeat)]
+    walls = [r[1] for r in runs]
+    best = runs[walls.index(statistics.median_low(walls))]
+    return best[0], statistics.median(walls), max(r[2] for r in runs), best[3]
+
+
+def hertz_study(levels, repeat):
+    rows = []
+    for level in levels:
+        h = A_HERTZ / level
+        reps = repeat if level <= 160 else 1
+        out_dir = f"{OUT}/hertz_a{level}"
+        s, wall, rss, output = median_runs(reps, "benchmarks/hertz_plane.edp", ["-h", repr(h)], out_dir)
+        if s is None:
+            print(f"hertz a/{level}: FAILED\n" + output[-500:], flush=True)
+            continue
+        internal, callbacks = ipopt_cpu(out_dir)
+        step = sum(st["time_s"] for st in s["steps"])
+        candidates = int(re.search(r"(\d+) contact candidates", output).group(1))
+        direct, dwall, _, _ = median_runs(reps, "bench/supported_disc.edp", ["-h", repr(h)], f"{OUT}/direct_a{level}")
+        solve = direct["results"]["solve_time_s"]["computed"] if direct else float("nan")
+        assembly = direct["results"]["assembly_time_s"]["computed"] if direct else float("nan")
+        row = {"level": f"a/{level}", "ndof": s["ndof"], "candidates": candidates, "iterations": s["ipopt_iterations"],
+               "wall_s": wall, "mesh_s": s["results"]["mesh_time_s"]["computed"], "solve_step_s": step,
+               "ipopt_internal_cpu_s": internal, "callbacks_cpu_s": callbacks,
+               "rest_s": wall - step - s["results"]["mesh_time_s"]["computed"], "peak_rss_mb": rss,
+               "a_error": s["results"]["a"]["rel_error"], "p_max_error": s["results"]["p_max"]["rel_error"],
+               "direct_solve_s": solve, "direct_assembly_s": assembly,
+               "contact_over_direct_solve": step / solve, "contact_over_assembly_and_solve": step / (solve + assembly),
+               "runs": reps}
+        rows.append(row)
+        print(f"hertz a/{level}: {row['ndof']} dofs, {row['iterations']} it., wall {wall:.1f} s (solve {step:.1f} s), "
+              f"RSS {rss:.0f} MB; direct solve {solve:.2f} s + assembly {assembly:.2f} s", flush=True)
+    return rows
+
+
+def cube_study(ns, repeat):
+    rows = []
+    for n in ns:
+        entry = {"n": n}
+        for solver in ("ipopt", "newton"):
+            out_dir = f"{OUT}/cube_n{n}_{solver}"
+            s, wall, rss, output = median_runs(repeat, "benchmarks/cube.edp",
+                                               ["-material", "neohookean", "-dim", "3", "-n", str(n), "-solver", solver], out_dir)
+            if s is None:
+                print(f"cube n = {n} {solver}: FAILED\n" + output[-500:], flush=True)
+                continue
+            entry.update({"ndof": s["ndof"], f"{solver}_iterations": s["ipopt_iterations"],
+                          f"{solver}_solve_s": sum(st["time_s"] for st in s["steps"]), f"{solver}_wall_s": wall,
+                          f"{solver}_w_error": s["results"]["w"]["rel_error"]})
+        if "newton_solve_s" in entry and "ipopt_solve_s" in entry:
+            entry["ipopt_over_newton"] = entry["ipopt_solve_s"] / entry["newton_solve_s"]
+            rows.append(entry)
+            print(f"cube 3D n = {n}: {entry['ndof']} dofs, IPOPT {entry['ipopt_iterations']} it. {entry['ipopt_solve_s']:.1f} s, "
+                  f"Newton {entry['newton_iterations']} it. {entry['newton_solve_s']:.1f} s", flush=True)
+    return rows
+
+
+def sphere_study(levels):
+    rows = []
+    for level in levels:
+        out_dir = f"{OUT}/sphere_a{level}"
+        s, wall, rss, output = timed_run("benchmarks/hertz_sphere.edp", ["-h", repr(A_SPHERE / level)], out_dir)
+        if s is None:
+            print(f"sphere a/{level}: FAILED\n" + output[-500:], flush=True)
+            continue
+        internal, callbacks = ipopt_cpu(out_dir)
+        rows.append({"level": f"a/{level}", "ndof": s["ndof"], "iterations": s["ipopt_iterations"], "wall_s": wall,
+                     "solve_step_s": sum(st["time_s"] for st in s["steps"]), "ipopt_internal_cpu_s": internal,
+                     "callbacks_cpu_s": callbacks, "peak_rss_mb": rss,
+                     "a_error": s["results"]["a"]["rel_error"], "p_max_error": s["results"]["p_max"]["rel_error"]})
+        print(f"sphere a/{level}: {s['ndof']} dofs, {s['ipopt_iterations']} it., wall {wall:.1f} s, RSS {rss:.0f} MB", flush=True)
+    return rows
+
+
+def slope(rows, x, y):
+    pts = [(math.log(r[x]), math.log(r[y])) for r in rows if r[y] > 0]
+    if len(pts) < 2:
+        return float("nan")
+    mx = sum(p[0] for p in pts) / len(pts)
+    my = sum(p[1] for p in pts) / len(pts)
+    return sum((p[0] - mx) * (p[1] - my) for p in pts) / sum((p[0] - mx) ** 2 for p in pts)
+
+
+def main():
+    global OUT
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--smoke", action="store_true", help="the smallest level of each study only")
+    parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--out", default=OUT)
+    args = parser.parse_args()
+    OUT = args.out
+    start = time.time()
+    repeat = 1 if args.smoke else args.repeat
+    hertz = hertz_study([20] if args.smoke else [40, 80, 160, 320, 480], repeat)
+    cube = cube_study([3] if args.smoke else [8, 12], repeat)
+    sphere = sphere_study([8] if args.smoke else [24])
+    growth = slope(hertz, "ndof", "solve_step_s")
+    data = {"hertz_plane": hertz, "hertz_time_growth_exponent": growth, "cube_ipopt_vs_newton": cube,
+            "hertz_sphere": sphere, "smoke": args.smoke, "repeat": repeat, "total_s": time.time() - start}
+    out = os.path.join(ROOT, OUT)
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(out, "bench.json"), "w") as f:
+        json.dump(data, f, indent=1)
+    t1 = markdown.table(("h", "DOFs", "candidates", "IPOPT it.", "wall (s)", "mesh (s)", "solve (s)", "IPOPT internal CPU (s)",
+                         "callbacks CPU (s)", "peak RSS (MB)", "a err", "p_max err", "direct solve (s)", "contact / direct solve",
+                         "contact / (assembly + solve)"),
+                        [(r["level"], r["ndof"], r["candidates"], r["iterations"], f"{r['wall_s']:.1f}", f"{r['mesh_s']:.1f}",
+                          f"{r['solve_step_s']:.1f}", f"{r['ipopt_internal_cpu_s']:.1f}", f"{r['callbacks_cpu_s']:.1f}",
+                          f"{r['peak_rss_mb']:.0f}", f"{r['a_error']:.1e}", f"{r['p_max_error']:.1e}", f"{r['direct_solve_s']:.2f}",
+                          f"{r['contact_over_direct_solve']:.1f}", f"{r['contact_over_assembly_and_solve']:.1f}") for r in hertz])
+    t2 = markdown.table(("n", "DOFs", "IPOPT it.", "IPOPT solve (s)", "Newton it.", "Newton solve (s)", "IPOPT / Newton"),
+                        [(r["n"], r["ndof"], r["ipopt_iterations"], f"{r['ipopt_solve_s']:.1f}", r["newton_iterations"],
+                          f"{r['newton_solve_s']:.1f}", f"{r['ipopt_over_newton']:.2f}") for r in cube])
+    t3 = markdown.table(("h", "DOFs", "IPOPT it.", "wall (s)", "solve (s)", "peak RSS (MB)", "a err", "p_max err"),
+                        [(r["level"], r["ndof"], r["iterations"], f"{r['wall_s']:.1f}", f"{r['solve_step_s']:.1f}",
+                          f"{r['peak_rss_mb']:.0f}", f"{r['a_error']:.1e}", f"{r['p_max_error']:.1e}") for r in sphere])
+    text = (f"Hertz plane (P1, linear), solve time growing like DOFs^{growth:.2f}:\n\n{t1}\n\n"
+            f"3D Neo-Hookean cube, no contact: IPOPT against plain Newton\n\n{t2}\n\n3D Hertz sphere\n\n{t3}")
+    print("\n" + text)
+    markdown.write(os.path.join(out, "BENCH.md"), "Benchmark timings", text)
+    return 0 if hertz and cube and sphere else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
