@@ -192,19 +192,22 @@ def arc(R2, label):
     return draw
 
 
-def run_data(name, csv_name):
-    """(summary, rows of results/<name>/<csv_name>), or None when either is missing."""
+def curve_figure(name, csv_name):
+    """(summary, rows of results/<name>/<csv_name>, figure, axes) for a one-panel curve plot,
+    or None when the summary or the file is missing."""
     s, rows = summary(name), read_csv(os.path.join(RESULTS, name, csv_name))
-    return (s, rows) if s and rows else None
+    if not s or not rows:
+        return None
+    fig, ax = plt.subplots(figsize=(7, 4.2))
+    return s, rows, fig, ax
 
 
 def fig_oring_plates(name, filename):
-    data = run_data(name, "force_squeeze.csv")
+    data = curve_figure(name, "force_squeeze.csv")
     if not data:
         return None
-    s, rows = data
+    s, rows, fig, ax = data
     c = column(rows, "c")
-    fig, ax = plt.subplots(figsize=(7, 4.2))
     ax.plot(c, column(rows, "force_per_length"), "o-", ms=4, label="computed (plane strain, P1)")
     cs = np.linspace(0, c.max(), 200)
     E, d = 6 * s["parameters"]["C10"], 2 * s["parameters"]["R"]   # Neo-Hookean: C01 = 0
@@ -214,12 +217,11 @@ def fig_oring_plates(name, filename):
 
 
 def fig_oring_groove(name, filename):
-    data = run_data(name, "face_forces.csv")
+    data = curve_figure(name, "face_forces.csv")
     if not data:
         return None
-    s, rows = data
+    s, rows, fig, ax = data
     closure = column(rows, "closure")
-    fig, ax = plt.subplots(figsize=(7, 4.2))
     for key, style in (("floor", "o-"), ("wall", "s--"), ("ceiling", "^-"), ("opposite_wall", "v--")):
         ax.plot(closure, column(rows, key), style, ms=4, mfc="none", label=key.replace("_", " "))
     return finish(fig, ax, "closure of the groove (m)", "force on the face (N/m)",
