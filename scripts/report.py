@@ -124,6 +124,9 @@ def draw_mesh(ax, x, u, tris, vm, amplification):
     deformed = x + amplification * u
     polys = deformed[tris]
     coll = PolyCollection(polys, array=vm, cmap="viridis", edgecolors="face", linewidths=0.2)
+    spread, level = np.ptp(vm), np.abs(vm).max()
+    if spread <= 1e-9 * level:   # a homogeneous field: show its value, not its rounding noise
+        coll.set_clim(0.99 * level, 1.01 * level)
     ax.add_collection(coll)
     ax.set_aspect("equal")
     return coll
