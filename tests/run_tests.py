@@ -55,6 +55,17 @@ def test_law_derivatives():
     check("fd_laws exit code", code == 0, f"exit {code}")
 
 
+def test_linear_stiffness():
+    """Linear elasticity's Hessian from its Lame form against the generic tangent assembly
+    (stiffness_check.edp): the same bilinear form, so equal to rounding (1e-12)."""
+    code, output, _ = run_driver("tests/stiffness_check.edp", [], None)
+    lines = [l for l in output.splitlines() if l.startswith("stiffness_check dim=")]
+    check("stiffness_check: 3 cases ran", len(lines) == 3, f"{len(lines)} lines")
+    for line in lines:
+        check("stiffness_check " + " ".join(line.split()[1:3]), line.endswith("PASS"), line)
+    check("stiffness_check exit code", code == 0, f"exit {code}")
+
+
 def test_obstacle_derivatives():
     """Gradient and Hessian of every obstacle g(x) against central differences
     (fd_obstacles.edp, h = 1e-5: truncation ~1e-10, tolerance 1e-8)."""
@@ -508,7 +519,7 @@ def test_ipopt_failure_is_reported():
 
 
 def main():
-    tests = [test_law_derivatives, test_obstacle_derivatives, test_cube, test_cube_second_parameter_set, test_cube_on_foundation,
+    tests = [test_law_derivatives, test_linear_stiffness, test_obstacle_derivatives, test_cube, test_cube_second_parameter_set, test_cube_on_foundation,
              test_hertz_plane, test_hertz_circle, test_hertz_hyperelastic,
              test_clamped_square, test_hertz_sphere, test_oring_groove, test_oring_plates, test_report, test_output_contract,
              test_working_folder_untouched, test_bad_input, test_ipopt_failure_is_reported,
