@@ -463,12 +463,27 @@ def test_bench_smoke():
                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     path = os.path.join(out("bench"), "bench.json")
     data = json.load(open(path)) if os.path.exists(path) else {}
-    check("bench smoke: exits 0 with the three studies in bench.json", proc.returncode == 0 and data.get("smoke")
-          and data["hertz_plane"] and data["cube_ipopt_vs_newton"] and data["hertz_sphere"], proc.stdout.strip().splitlines()[-1:])
+    check("bench smoke: exits 0 with the four studies in bench.json", proc.returncode == 0 and data.get("smoke")
+          and data["hertz_plane"] and data["cube_ipopt_vs_newton"] and data["hertz_neohookean_ipopt_vs_newton"]
+          and data["hertz_sphere"], proc.stdout.strip().splitlines()[-1:])
     if data.get("cube_ipopt_vs_newton"):
         c = data["cube_ipopt_vs_newton"][0]
         check("bench smoke: IPOPT and Newton both give the exact cube (w to 1e-8)",
               c["ipopt_w_error"] <= 1e-8 and c["newton_w_error"] <= 1e-8, f"{c['ipopt_w_error']:.1e}, {c['newton_w_error']:.1e}")
+
+
+def test_known_contact_newton():
+    """Neo-Hookean Hertz: plain Newton given the contact set IPOPT found (u2 on the plane at
+    the active nodes, u1 free) must land on IPOPT's solution. Both stop at a relative residual
+    of 1e-8 (-tol); measured difference 6.4e-8 of max |U| (1.5e-10 with linear elasticity),
+    bound 1e-6. A wrong active set or a wrong multiplier sign would move U by ~1e-3."""
+    s = run_summary("known-contact Newton", "benchmarks/hertz_plane.edp", ["-material", "neohookean", "-newton", "1"])
+    if s:
+        r = s["results"]
+        check("known-contact Newton: |U_Newton - U_IPOPT| / |U| <= 1e-6",
+              r["newton_vs_ipopt_rel_difference"]["computed"] <= 1e-6, f"{r['newton_vs_ipopt_rel_difference']['computed']:.1e}")
+        check("known-contact Newton converged in <= 10 iterations", 0 < r["newton_iterations"]["computed"] <= 10,
+              r["newton_iterations"]["computed"])
 
 
 def test_sweep_smoke():
@@ -520,7 +535,7 @@ def test_ipopt_failure_is_reported():
 
 def main():
     tests = [test_law_derivatives, test_linear_stiffness, test_obstacle_derivatives, test_cube, test_cube_second_parameter_set, test_cube_on_foundation,
-             test_hertz_plane, test_hertz_circle, test_hertz_hyperelastic,
+             test_hertz_plane, test_hertz_circle, test_hertz_hyperelastic, test_known_contact_newton,
              test_clamped_square, test_hertz_sphere, test_oring_groove, test_oring_plates, test_report, test_output_contract,
              test_working_folder_untouched, test_bad_input, test_ipopt_failure_is_reported,
              test_hard_cases, test_step_cutting, test_sweep_smoke, test_bench_smoke]
