@@ -173,8 +173,8 @@ def test_working_folder_untouched():
 # ---------------------------------------------------------------- Hertz
 def hertz_case(label, script, args, bound_a=3e-3, bound_l2=1e-2):
     """Runs a Hertz driver; a and p_max (fit of p^2 against x^2, README) within bound_a of
-    Hertz's formulas (the measured finite-disc limit is 2e-4 .. 6e-4, the default h = a/30
-    adds <= 2e-4), L2 of p within bound_l2 (edge of contact: ~0.2 % .. 0.7 % at h = a/30),
+    Hertz's formulas (measured 3e-4 .. 1.6e-3 over the cases below: the finite disc, its far
+    field at hmax = R/20 and h = a/30, README), L2 of p within bound_l2 (edge of contact: ~0.2 % .. 0.7 % at h = a/30),
     force balance <= 1e-8 (solver tolerance 1e-8 on scaled stationarity: measured ~1e-13)
     and no penetration beyond 1e-10 R (bound relaxation is off: measured 0)."""
     s = run_summary(label, script, args)
