@@ -44,26 +44,27 @@ def run_summary(label, script, args):
 
 
 # ---------------------------------------------------------------- derivatives
+def check_script_cases(name, expected):
+    """Runs tests/<name>.edp, which prints one '<name> dim=... PASS|FAIL' line per case and
+    exits 1 on a failure: each line is a check, and so are the count and the exit code."""
+    code, output, _ = run_driver(f"tests/{name}.edp", [], None)
+    lines = [l for l in output.splitlines() if l.startswith(f"{name} dim=")]
+    check(f"{name}: {expected} cases ran", len(lines) == expected, f"{len(lines)} lines")
+    for line in lines:
+        check(f"{name} " + " ".join(line.split()[1:3]), line.endswith("PASS"), line)
+    check(f"{name} exit code", code == 0, f"exit {code}")
+
+
 def test_law_derivatives():
     """Every law's P and A against central differences of psi and P (fd_laws.edp):
     truncation ~h^2 = 1e-10, so 1e-8 is what the method allows with margin."""
-    code, output, _ = run_driver("tests/fd_laws.edp", [], None)
-    lines = [l for l in output.splitlines() if l.startswith("fd_laws dim=")]
-    check("fd_laws: 6 law/dimension checks ran", len(lines) == 6, f"{len(lines)} lines")
-    for line in lines:
-        check("fd_laws " + " ".join(line.split()[1:3]), line.endswith("PASS"), line)
-    check("fd_laws exit code", code == 0, f"exit {code}")
+    check_script_cases("fd_laws", 6)
 
 
 def test_linear_stiffness():
     """Linear elasticity's Hessian from its Lame form against the generic tangent assembly
     (stiffness_check.edp): the same bilinear form, so equal to rounding (1e-12)."""
-    code, output, _ = run_driver("tests/stiffness_check.edp", [], None)
-    lines = [l for l in output.splitlines() if l.startswith("stiffness_check dim=")]
-    check("stiffness_check: 3 cases ran", len(lines) == 3, f"{len(lines)} lines")
-    for line in lines:
-        check("stiffness_check " + " ".join(line.split()[1:3]), line.endswith("PASS"), line)
-    check("stiffness_check exit code", code == 0, f"exit {code}")
+    check_script_cases("stiffness_check", 3)
 
 
 def test_obstacle_derivatives():
