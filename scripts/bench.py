@@ -62,22 +62,36 @@ def median_runs(repeat, script, args, out_dir):
     return best[0], statistics.median(walls), max(r[2] for r in runs), best[3]
 
 
+def measured(label, repeat, script, args, out_dir):
+    """median_runs, or None after printing the failure with the end of the run's output."""
+    s, wall, rss, output = median_runs(repeat, script, args, out_dir)
+    if s is None:
+        print(f"{label}: FAILED\n" + output[-500:], flush=True)
+        return None
+    return s, wall, rss, output
+
+
+def solve_seconds(summary):
+    """Wall time of all the load steps' solves."""
+    return sum(st["time_s"] for st in summary["steps"])
+
+
 def hertz_study(levels, repeat):
     rows = []
     for level in levels:
         h = A_HERTZ / level
         reps = repeat if level <= 160 else 1
         out_dir = f"{OUT}/hertz_a{level}"
-        s, wall, rss, output = median_runs(reps, "benchmarks/hertz_plane.edp", ["-h", repr(h)], out_dir)
-        if s is None:
-            print(f"hertz a/{level}: FAILED\n" + output[-500:], flush=True)
+        run = measured(f"hertz a/{level}", reps, "benchmarks/hertz_plane.edp", ["-h", repr(h)], out_dir)
+        if run is None:
             continue
+        s, wall, rss, output = run
         internal, callbacks = ipopt_cpu(out_dir)
-        step = sum(st["time_s"] for st in s["steps"])
+        step = solve_seconds(s)
         candidates = int(re.search(r"(\d+) contact candidates", output).group(1))
-        direct, dwall, _, _ = median_runs(reps, "bench/supported_disc.edp", ["-h", repr(h)], f"{OUT}/direct_a{level}")
-        solve = direct["results"]["solve_time_s"]["computed"] if direct else float("nan")
-        assembly = direct["results"]["assembly_time_s"]["computed"] if direct else float("nan")
+        direct = measured(f"supported disc a/{level}", reps, "bench/supported_disc.edp", ["-h", repr(h)], f"{OUT}/direct_a{level}")
+        solve = direct[0]["results"]["solve_time_s"]["computed"] if direct else float("nan")
+        assembly = direct[0]["results"]["assembly_time_s"]["computed"] if direct else float("nan")
         row = {"level": f"a/{level}", "ndof": s["ndof"], "candidates": candidates, "iterations": s["ipopt_iterations"],
                "wall_s": wall, "mesh_s": s["results"]["mesh_time_s"]["computed"], "solve_step_s": step,
                "ipopt_internal_cpu_s": internal, "callbacks_cpu_s": callbacks,
@@ -98,13 +112,13 @@ def cube_study(ns, repeat):
         entry = {"n": n}
         for solver in ("ipopt", "newton"):
             out_dir = f"{OUT}/cube_n{n}_{solver}"
-            s, wall, rss, output = median_runs(repeat, "benchmarks/cube.edp",
-                                               ["-material", "neohookean", "-dim", "3", "-n", str(n), "-solver", solver], out_dir)
-            if s is None:
-                print(f"cube n = {n} {solver}: FAILED\n" + output[-500:], flush=True)
+            run = measured(f"cube n = {n} {solver}", repeat, "benchmarks/cube.edp",
+                           ["-material", "neohookean", "-dim", "3", "-n", str(n), "-solver", solver], out_dir)
+            if run is None:
                 continue
+            s, wall = run[0], run[1]
             entry.update({"ndof": s["ndof"], f"{solver}_iterations": s["ipopt_iterations"],
-                          f"{solver}_solve_s": sum(st["time_s"] for st in s["steps"]), f"{solver}_wall_s": wall,
+                          f"{solver}_solve_s": solve_seconds(s), f"{solver}_wall_s": wall,
                           f"{solver}_w_error": s["results"]["w"]["rel_error"]})
         if "newton_solve_s" in entry and "ipopt_solve_s" in entry:
             entry["ipopt_over_newton"] = entry["ipopt_solve_s"] / entry["newton_solve_s"]
@@ -118,14 +132,14 @@ def hertz_newton_study(levels, repeat):
     rows = []
     for level in levels:
         out_dir = f"{OUT}/hertz_nh_a{level}"
-        s, wall, rss, output = median_runs(repeat, "benchmarks/hertz_plane.edp",
-                                           ["-material", "neohookean", "-newton", "1", "-h", repr(A_HERTZ / level)], out_dir)
-        if s is None:
-            print(f"hertz Neo-Hookean a/{level}: FAILED\n" + output[-500:], flush=True)
+        run = measured(f"hertz Neo-Hookean a/{level}", repeat, "benchmarks/hertz_plane.edp",
+                       ["-material", "neohookean", "-newton", "1", "-h", repr(A_HERTZ / level)], out_dir)
+        if run is None:
             continue
+        s = run[0]
         r = s["results"]
         row = {"level": f"a/{level}", "ndof": s["ndof"], "ipopt_iterations": s["ipopt_iterations"],
-               "ipopt_solve_s": sum(st["time_s"] for st in s["steps"]),
+               "ipopt_solve_s": solve_seconds(s),
                "newton_iterations": int(r["newton_iterations"]["computed"]), "newton_solve_s": r["newton_time_s"]["computed"],
                "rel_difference": r["newton_vs_ipopt_rel_difference"]["computed"], "a_error": r["a"]["rel_error"]}
         row["ipopt_over_newton"] = row["ipopt_solve_s"] / row["newton_solve_s"]
@@ -139,13 +153,13 @@ def sphere_study(levels):
     rows = []
     for level in levels:
         out_dir = f"{OUT}/sphere_a{level}"
-        s, wall, rss, output = timed_run("benchmarks/hertz_sphere.edp", ["-h", repr(A_SPHERE / level)], out_dir)
-        if s is None:
-            print(f"sphere a/{level}: FAILED\n" + output[-500:], flush=True)
+        run = measured(f"sphere a/{level}", 1, "benchmarks/hertz_sphere.edp", ["-h", repr(A_SPHERE / level)], out_dir)
+        if run is None:
             continue
+        s, wall, rss, _ = run
         internal, callbacks = ipopt_cpu(out_dir)
         rows.append({"level": f"a/{level}", "ndof": s["ndof"], "iterations": s["ipopt_iterations"], "wall_s": wall,
-                     "solve_step_s": sum(st["time_s"] for st in s["steps"]), "ipopt_internal_cpu_s": internal,
+                     "solve_step_s": solve_seconds(s), "ipopt_internal_cpu_s": internal,
                      "callbacks_cpu_s": callbacks, "peak_rss_mb": rss,
                      "a_error": s["results"]["a"]["rel_error"], "p_max_error": s["results"]["p_max"]["rel_error"]})
         print(f"sphere a/{level}: {s['ndof']} dofs, {s['ipopt_iterations']} it., wall {wall:.1f} s, RSS {rss:.0f} MB", flush=True)
