@@ -38,8 +38,14 @@ N ?= 200
 sweep: deps
 	$(PYTHON) scripts/sweep.py --n $(N)
 
+# Debian's packages, then the suite's plugin (plugin/contact_runtime.cpp), which freefem++.pref loads
 deps:
 	@bash scripts/install_deps.sh
+	@$(MAKE) --no-print-directory plugin/contact_runtime.so
+
+plugin/contact_runtime.so: plugin/contact_runtime.cpp
+	@cd plugin && ff-c++ contact_runtime.cpp > build.log 2>&1 || { cat build.log; exit 1; }
+	@rm -f plugin/contact_runtime.o
 
 clean:
-	rm -rf results
+	rm -rf results plugin/contact_runtime.so plugin/build.log

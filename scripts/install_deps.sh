@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs what the suite needs on Debian/Ubuntu, skipping what is already there:
-# FreeFEM with its plugins (ff-Ipopt, iovtk, msh3, gsl), gmsh, python3 with matplotlib, and OpenBLAS: Debian's
+# FreeFEM with its plugins (ff-Ipopt, iovtk, msh3, gsl) and its plugin compiler ff-c++ (with g++:
+# the suite's own plugin, plugin/contact_runtime.cpp), gmsh, python3 with matplotlib, GNU time
+# (the bench's peak-memory measurement), and OpenBLAS: Debian's
 # MUMPS (IPOPT's linear solver) otherwise runs on the reference BLAS, and the factorisations
 # that dominate every contact solve take 4x longer (3D Hertz, 23.6k dofs: 53 s -> 12 s).
 # Called by every make target; uses sudo when not root.
@@ -14,10 +16,17 @@ have_plugin() {
 }
 
 missing=()
-command -v FreeFem++ >/dev/null 2>&1 || missing+=(freefem++)
+# need COMMAND PACKAGE: every external command the Makefile, scripts, tests and drivers call
+# (tests/check_commands.py holds this list against the code)
+need() { command -v "$1" >/dev/null 2>&1 || missing+=("$2"); }
+need FreeFem++ freefem++
 have_plugin ff-Ipopt || missing+=(libfreefem++)
-command -v gmsh >/dev/null 2>&1 || missing+=(gmsh)
-command -v python3 >/dev/null 2>&1 || missing+=(python3)
+need ff-c++ libfreefem++-dev
+need g++ g++
+need gmsh gmsh
+need python3 python3
+need /usr/bin/time time
+need awk mawk
 dpkg -s libopenblas0-pthread >/dev/null 2>&1 || missing+=(libopenblas0-pthread)
 # the report's figures: matplotlib for Debian's python3 (the Makefile runs /usr/bin/python3)
 dpkg -s python3-matplotlib >/dev/null 2>&1 || missing+=(python3-matplotlib)
@@ -26,6 +35,8 @@ if [ ${#missing[@]} -eq 0 ]; then
   exit 0
 fi
 
+# a package may be listed twice (two commands it provides)
+mapfile -t missing < <(printf '%s\n' "${missing[@]}" | sort -u)
 echo "installing: ${missing[*]}"
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then
