@@ -1,7 +1,7 @@
 # Quick start: `make` runs every benchmark and writes the report (results/REPORT.md and
 # results/report.html); `make test` runs the test suite. Both install missing dependencies
 # first. Benchmarks run in parallel, one per core (JOBS=1 for one at a time).
-.PHONY: run report table test convergence sweep bench deps clean
+.PHONY: run report table test convergence sweep bench deps clean workspace
 # Debian's interpreter, where the deps script installs matplotlib (a pyenv shim may shadow it)
 PYTHON := $(shell test -x /usr/bin/python3 && echo /usr/bin/python3 || echo python3)
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
@@ -39,9 +39,14 @@ sweep: deps
 	$(PYTHON) scripts/sweep.py --n $(N)
 
 # Debian's packages, then the suite's plugin (plugin/contact_runtime.cpp), which freefem++.pref loads
+# a folder of your own for your own problem: `make workspace DIR=~/my_contact` (docs/writing_your_own_problem.md)
+workspace: deps
+	@test -n "$(DIR)" || { echo "error: give the folder: make workspace DIR=<folder>"; exit 2; }
+	@bash scripts/workspace.sh "$(DIR)"
+
 deps:
 	@bash scripts/install_deps.sh
-	@$(MAKE) --no-print-directory plugin/contact_runtime.so
+	@$(MAKE) -s --no-print-directory plugin/contact_runtime.so
 
 plugin/contact_runtime.so: plugin/contact_runtime.cpp
 	@cd plugin && ff-c++ contact_runtime.cpp > build.log 2>&1 || { cat build.log; exit 1; }

@@ -21,4 +21,5 @@ BENCHMARKS = [
     ("hertz_sphere", "benchmarks/hertz_sphere.edp", []),
     ("oring_groove", "benchmarks/oring.edp", ["-case", "groove"]),
     ("oring_plates", "benchmarks/oring.edp", ["-case", "plates"]),
+    ("platen_block", "benchmarks/platen_block.edp", []),
 ]

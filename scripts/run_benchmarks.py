@@ -6,6 +6,7 @@ table (printed and written to results/RESULTS.md).
     run_benchmarks.py --table       the table from the summaries already in results/
     run_benchmarks.py --names       the benchmark names, one line"""
 
+import json
 import os
 import sys
 
@@ -13,6 +14,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from benchmarks import BENCHMARKS  # noqa: E402
 from freefem import ROOT, read_summary, run_driver  # noqa: E402
 import markdown  # noqa: E402
+import verdicts  # noqa: E402
 
 
 def fmt(value, spec):
@@ -36,23 +38,34 @@ def run_one(name, script, args):
 
 
 def table():
-    rows, missing = [], []
+    """The verdict table (scripts/verdicts.py): every checked quantity with its reference, kind,
+    tolerance and PASS/FAIL, printed and written to results/RESULTS.md; 1 if any fails or is missing."""
+    rows, missing, failed = [], [], 0
     for name, _, _ in BENCHMARKS:
         summary = read_summary(os.path.join("results", name))
         if summary is None:
             missing.append(name)
             continue
+        stored = stored_reference(name)
         for quantity, r in summary["results"].items():
-            rows.append((name, quantity, r["computed"], r["reference"], r["rel_error"],
-                         summary["ndof"], summary["ipopt_iterations"], summary["wall_time_s"]))
-    header = ("benchmark", "quantity", "computed", "reference", "rel. error", "DOFs", "IPOPT it.", "time (s)")
-    text = markdown.table(header, [(b, q, fmt(c, ".10g"), fmt(r, ".10g"), fmt(e, ".2e"), n, it, f"{t:.2f}")
-                                   for b, q, c, r, e, n, it, t in rows])
-    print("\n" + text)
-    markdown.write(os.path.join(ROOT, "results", "RESULTS.md"), "Results", text)
-    if missing:
-        print(f"\nmissing or failed: {', '.join(missing)}")
-    return 1 if missing else 0
+            reference, error, tolerance, verdict = verdicts.verdict(name, quantity, r, stored)
+            if verdict == "info":
+                continue
+            failed += verdict != "PASS"
+            rows.append((name, quantity, fmt(r["computed"], ".10g"), fmt(reference, ".10g"),
+                         verdicts.check(name, quantity).kind, tolerance, fmt(error, ".2e"), verdict))
+    header = ("benchmark", "quantity", "computed", "reference", "reference kind", "tolerance", "error", "verdict")
+    text = markdown.table(header, rows)
+    line = f"{len(rows) - failed} PASS, {failed} FAIL" + (f"; missing or failed runs: {', '.join(missing)}" if missing else "")
+    print("\n" + text + "\n\n" + line)
+    markdown.write(os.path.join(ROOT, "results", "RESULTS.md"), "Results", text + "\n\n" + line)
+    return 1 if missing or failed else 0
+
+
+def stored_reference(name):
+    """Mesh-converged references kept in reference/<name>.json."""
+    path = os.path.join(ROOT, "reference", name + ".json")
+    return {q: v["value"] for q, v in json.load(open(path))["reference"].items()} if os.path.exists(path) else {}
 
 
 def main(argv):

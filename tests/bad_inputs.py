@@ -12,6 +12,7 @@ from freefem import run_driver  # noqa: E402
 
 CUBE, PLANE, CIRCLE = "benchmarks/cube.edp", "benchmarks/hertz_plane.edp", "benchmarks/hertz_circle.edp"
 SPHERE, CLAMPED, ORING = "benchmarks/hertz_sphere.edp", "benchmarks/clamped_square.edp", "benchmarks/oring.edp"
+PLATEN = "benchmarks/platen_block.edp"
 
 # (driver, arguments ({tmp} is a scratch folder holding the files of make_files), the word the
 # error line must contain)
@@ -58,6 +59,10 @@ CASES = [
     (ORING, ["-cmax", "1"], "-cmax"),
     (ORING, ["-side", "0.5"], "-side"),
     (ORING, ["-h", "1"], "-h"),
+    (PLATEN, ["-nu", "0.5"], "-nu"),
+    (PLATEN, ["-push", "0.3"], "-push"),
+    (PLATEN, ["-waves", "0"], "-waves"),
+    (PLATEN, ["-floormargin", "-0.1"], "-floormargin"),
 ]
 
 

@@ -1,0 +1,136 @@
+"""The verdict of every quantity the benchmarks report: what its reference is, what kind of
+reference that is, and the bound the test suite holds it to. The report (scripts/report.py)
+prints a verdict from this table for each default run of `make`, and the tests
+(tests/run_tests.py) take their bounds from it, so the two cannot drift apart.
+
+Kinds of reference:
+  exact           an exact solution of the discrete problem (P1 reproduces a homogeneous state),
+                  or an exact identity (the applied load, the weight)
+  analytic        an analytic formula of the continuous problem (Hertz)
+  mesh-converged  a value extrapolated from a mesh study of our own (stored or quoted below)
+  empirical       an empirical law (Lindley's): shown against its reference, held to our mesh study
+  balance         an equilibrium or symmetry identity that holds to the solver's tolerance
+  info            informational: no bound
+"""
+
+from dataclasses import dataclass
+from typing import Optional
+
+# body size of each benchmark (penetration bounds are 1e-10 of it)
+BODY_SIZE = {"cube": 1.0, "hertz": 1.0, "clamped_square": 1.0, "oring": 0.52, "platen_block": 0.5}
+
+
+@dataclass(frozen=True)
+class Check:
+    kind: str             # see above
+    bound: Optional[float] = None
+    measure: str = "rel"  # rel: |computed - reference| / |reference|; value: |computed| itself;
+    #                       abs: |computed - reference|; ratio: computed / reference in [low, bound];
+    #                       positive: computed > 0
+    low: Optional[float] = None
+    note: str = ""
+
+
+INFO = Check("info")
+
+# per (benchmark, quantity); benchmark names are those of scripts/benchmarks.py
+_TABLE = {}
+
+
+def _add(benchmarks, quantities, check):
+    for b in benchmarks:
+        for q in quantities:
+            _TABLE[(b, q)] = check
+
+
+_CUBES = ["cube_2d_mooney", "cube_2d_neohookean", "cube_3d_mooney", "cube_3d_neohookean",
+          "cube_2d_mooney_foundation", "cube_3d_neohookean_foundation"]
+_add(_CUBES, ["w", "lateral_displacement"],
+     Check("exact", 1e-8, note="homogeneous deformation, reproduced exactly by P1; IPOPT's tolerance is what is left"))
+_add(_CUBES, ["w_vs_code_aster_incompressible"],
+     Check("info", note="Code_Aster's incompressible (nu = 0.5) value: the 0.19 % is nu = 0.499's compressibility"))
+_add(_CUBES, ["contact_force"], Check("exact", 1e-10, note="the applied load"))
+
+_HERTZ_TIGHT = ["hertz_plane", "hertz_circle_vertical"]
+_add(_HERTZ_TIGHT, ["a", "p_max"],
+     Check("analytic", 3e-3, note="Hertz; measured 3e-4..1.6e-3: the finite disc, its far field and h = a/30"))
+_add(_HERTZ_TIGHT, ["pressure_l2_rel_error"], Check("analytic", 1e-2, "value", note="L2 error of p against Hertz's ellipse"))
+_add(["hertz_circle_exact", "hertz_circle_linearized"], ["a", "p_max"],
+     Check("analytic", 1e-2, note="(42) and (43) keep the term psi'(X1) u1 that Hertz drops: they sit 0.3-0.4 % away"))
+_add(["hertz_sphere"], ["a", "p_max"], Check("analytic", 3e-2, note="3D Hertz on a coarse mesh (h = a/8)"))
+_add(["hertz_plane_neohookean"], ["a", "p_max"],
+     Check("info", note="finite strain (3 % at the contact) moves Neo-Hookean 0.6 % from the small-strain Hertz"))
+_HERTZ = _HERTZ_TIGHT + ["hertz_circle_exact", "hertz_circle_linearized", "hertz_sphere", "hertz_plane_neohookean"]
+_add(_HERTZ, ["contact_force"], Check("exact", 1e-8, note="the applied load"))
+
+_CLAMPED_NOTE = "reference/clamped_square.json (P2, n = 25..200, Richardson); bound ~1.5x the n = 25 error"
+_add(["clamped_square"], ["contact_force", "clamp_reaction_x"], Check("mesh-converged", 1e-3, note=_CLAMPED_NOTE))
+_add(["clamped_square"], ["pressure_at_y0.8", "pressure_at_y0.9", "pressure_at_y0.95"],
+     Check("mesh-converged", 2.5e-3, note=_CLAMPED_NOTE))
+_add(["clamped_square"], ["centre_of_pressure_y"], Check("mesh-converged", 1.5e-4, "abs", note=_CLAMPED_NOTE))
+_add(["clamped_square"], ["separation_y"], Check("mesh-converged", 0.01, "abs", note="located to half a node spacing"))
+_add(["clamped_square"], ["weight_carried"], Check("exact", 1e-8, note="clamp + wall carry the weight"))
+
+_add(["oring_plates"], ["force_c0.2"],
+     Check("empirical", 1.40, "ratio", low=1.28,
+           note="Lindley's law; the ratio is held to our mesh study (1.417, 1.344, 1.323, 1.316 -> 1.313)"))
+_add(["oring_plates"], ["force_c0.1", "force_c0.3"], Check("info", note="Lindley's empirical law"))
+_add(["oring_groove"], ["floor_ceiling_balance_rel_error", "walls_balance_rel_error", "floor_wall_symmetry_rel_error"],
+     Check("balance", 1e-8, "value", note="opposite faces balance; the problem is symmetric about y = x"))
+
+PLATEN_REFERENCE = 0.6467   # platen force, n = 40, 80, 160 Richardson (README, platen block mesh study)
+_add(["platen_block"], ["platen_force"],
+     Check("mesh-converged", 3e-2, note="n = 40, 80, 160, Richardson: 0.6467 (first order in h)"))
+
+
+def check(benchmark, quantity):
+    """The Check of a quantity (INFO when it has no bound)."""
+    if (benchmark, quantity) in _TABLE:
+        return _TABLE[(benchmark, quantity)]
+    if quantity == "force_balance_rel_error":
+        return Check("balance", 1e-8, "value", note="applied + contact + reactions = 0, to the solver's tolerance")
+    if quantity == "max_penetration":
+        size = next((v for k, v in BODY_SIZE.items() if benchmark.startswith(k)), 1.0)
+        return Check("exact", 1e-10 * size, "value", note="no penetration at the contact nodes (1e-10 of the body)")
+    if quantity == "J_min":
+        return Check("exact", None, "positive", note="no inverted element")
+    return INFO
+
+
+def reference_for(benchmark, quantity, result, stored):
+    """The reference value of a quantity: the driver's own, a stored mesh-converged one, or the
+    mesh-converged value quoted here."""
+    if result.get("reference") is not None:
+        return result["reference"]
+    if quantity in stored:
+        return stored[quantity]
+    if (benchmark, quantity) == ("platen_block", "platen_force"):
+        return PLATEN_REFERENCE
+    return None
+
+
+def verdict(benchmark, quantity, result, stored=None):
+    """(reference, error, tolerance text, verdict) for one result {computed, reference, ...};
+    verdict is PASS, FAIL or info."""
+    c = check(benchmark, quantity)
+    computed = result["computed"]
+    reference = reference_for(benchmark, quantity, result, stored or {})
+    if c.kind == "info":
+        return reference, None, "-", "info"
+    if c.measure == "positive":
+        return reference, None, "> 0", "PASS" if computed > 0 else "FAIL"
+    if c.measure == "value":
+        return reference, abs(computed), f"<= {c.bound:.1e}", "PASS" if abs(computed) <= c.bound else "FAIL"
+    if reference is None:
+        return None, None, "-", "FAIL"
+    if c.measure == "ratio":
+        ratio = computed / reference
+        ok = c.low <= ratio <= c.bound
+        return reference, ratio, f"ratio in [{c.low:g}, {c.bound:g}]", "PASS" if ok else "FAIL"
+    error = abs(computed - reference) / (abs(reference) if c.measure == "rel" else 1.0)
+    return reference, error, f"<= {c.bound:.1e}" + (" (abs)" if c.measure == "abs" else ""), "PASS" if error <= c.bound else "FAIL"
+
+
+def bound(benchmark, quantity):
+    """The bound the tests hold a default run's quantity to."""
+    return check(benchmark, quantity).bound
