@@ -22,4 +22,8 @@ BENCHMARKS = [
     ("oring_groove", "benchmarks/oring.edp", ["-case", "groove"]),
     ("oring_plates", "benchmarks/oring.edp", ["-case", "plates"]),
     ("platen_block", "benchmarks/platen_block.edp", []),
+    ("cube_2d_mooney_incompressible", "benchmarks/cube.edp", ["-material", "mooney", "-dim", "2", "-nu", "0.5"]),
+    ("cube_3d_neohookean_incompressible", "benchmarks/cube.edp", ["-material", "neohookean", "-dim", "3", "-n", "3", "-nu", "0.5"]),
+    ("rivlin_tube", "benchmarks/rivlin_tube.edp", []),
+    ("hertz_plane_nu0.4999", "benchmarks/hertz_plane.edp", ["-volumetric", "nodal", "-nu", "0.4999"]),
 ]

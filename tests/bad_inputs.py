@@ -12,12 +12,14 @@ from freefem import run_driver  # noqa: E402
 
 CUBE, PLANE, CIRCLE = "benchmarks/cube.edp", "benchmarks/hertz_plane.edp", "benchmarks/hertz_circle.edp"
 SPHERE, CLAMPED, ORING = "benchmarks/hertz_sphere.edp", "benchmarks/clamped_square.edp", "benchmarks/oring.edp"
-PLATEN = "benchmarks/platen_block.edp"
+PLATEN, TUBE = "benchmarks/platen_block.edp", "benchmarks/rivlin_tube.edp"
 
 # (driver, arguments ({tmp} is a scratch folder holding the files of make_files), the word the
 # error line must contain)
 CASES = [
-    (CUBE, ["-nu", "0.5"], "-nu"),
+    (CUBE, ["-nu", "0.5", "-volumetric", "penalty"], "-nu"),
+    (CUBE, ["-nu", "0.6"], "-nu"),
+    (CUBE, ["-volumetric", "soft"], "-volumetric"),
     (CUBE, ["-nu", "-1"], "-nu"),
     (CUBE, ["-C10", "-1"], "-C10"),
     (CUBE, ["-C10", "0", "-C01", "0"], "-C10"),
@@ -53,13 +55,17 @@ CASES = [
     (CLAMPED, ["-E", "0"], "-E"),
     (CLAMPED, ["-order", "3"], "-order"),
     (CLAMPED, ["-n", "0"], "-n"),
+    (CLAMPED, ["-volumetric", "nodal"], "P1"),
     (ORING, ["-case", "pipe"], "-case"),
     (ORING, ["-C10", "0"], "-C10"),
-    (ORING, ["-nu", "0.5"], "-nu"),
+    (ORING, ["-nu", "0.5", "-volumetric", "penalty"], "-nu"),
     (ORING, ["-cmax", "1"], "-cmax"),
     (ORING, ["-side", "0.5"], "-side"),
     (ORING, ["-h", "1"], "-h"),
     (PLATEN, ["-nu", "0.5"], "-nu"),
+    (TUBE, ["-inner", "0.9"], "-inner"),
+    (TUBE, ["-B", "0.5"], "-B"),
+    (TUBE, ["-nu", "0.5", "-volumetric", "penalty"], "-nu"),
     (PLATEN, ["-push", "0.3"], "-push"),
     (PLATEN, ["-waves", "0"], "-waves"),
     (PLATEN, ["-floormargin", "-0.1"], "-floormargin"),
