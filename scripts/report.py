@@ -379,10 +379,12 @@ def sections():
             lambda: fig_deformed("hertz_circle_exact", "hertz_circle_deformed.png",
                                  "Hertz, disc on a rigid cylinder, exact form (42): von Mises stress",
                                  [arc(R2, f"rigid cylinder R2 = {R2:g} m")], zoom=zoom(circle_a))]),
-        ("3D Hertz: a hemisphere on a rigid plane", ["hertz_sphere"],
+        ("3D Hertz: a hemisphere on a rigid plane", ["hertz_sphere", "hertz_sphere_axisymmetric"],
          "A quarter hemisphere of tetrahedra on a rigid plane: Hertz's point contact within 1 % on this coarse "
-         "mesh (h = a/8); the README's performance section has finer meshes.", [
-            lambda: fig_hertz_pressure(["hertz_sphere"], "hertz_sphere_pressure.png",
+         "mesh (h = a/8); the README's performance section has finer meshes. The same sphere from its 2D meridian "
+         "section (-axisymmetric 1, the hoop stretch and the 2 pi r measure) meets Hertz within 0.21 % in under a "
+         "second.", [
+            lambda: fig_hertz_pressure(["hertz_sphere", "hertz_sphere_axisymmetric"], "hertz_sphere_pressure.png",
                                        "3D Hertz, hemisphere on a rigid plane: contact pressure against r\nE = 2.1e5 Pa, nu = 0.3, R = 1 m, f = 100 Pa",
                                        unit_x="r (m)"),
             lambda: fig_deformed("hertz_sphere", "hertz_sphere_deformed.png",

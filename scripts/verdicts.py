@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from typing import Optional
 
 # body size of each benchmark (penetration bounds are 1e-10 of it)
-BODY_SIZE = {"cube": 1.0, "hertz": 1.0, "clamped_square": 1.0, "oring": 0.52, "platen_block": 0.5, "rivlin_tube": 1.0}
+BODY_SIZE = {"cylinder": 1.0, "cube": 1.0, "hertz": 1.0, "clamped_square": 1.0, "oring": 0.52, "platen_block": 0.5, "rivlin_tube": 1.0}
 
 
 @dataclass(frozen=True)
@@ -45,7 +45,7 @@ def _add(benchmarks, quantities, check):
 
 _CUBES = ["cube_2d_mooney", "cube_2d_neohookean", "cube_3d_mooney", "cube_3d_neohookean",
           "cube_2d_mooney_foundation", "cube_3d_neohookean_foundation",
-          "cube_2d_mooney_incompressible", "cube_3d_neohookean_incompressible"]
+          "cube_2d_mooney_incompressible", "cube_3d_neohookean_incompressible", "cylinder_axisymmetric"]
 _add(_CUBES, ["w", "lateral_displacement"],
      Check("exact", 1e-8, note="homogeneous deformation, reproduced exactly by P1; IPOPT's tolerance is what is left"))
 _add(_CUBES, ["w_vs_code_aster_incompressible"],
@@ -59,7 +59,7 @@ _add(["rivlin_tube"], ["inner_radius_error_rel_to_opening"],
 _add(["rivlin_tube"], ["outer_radius"], Check("exact", 1e-4, note="Rivlin's exact solution (2.9e-5 at n = 32)"))
 _add(["rivlin_tube"], ["load_quadrature_vs_closed_form"], Check("exact", 1e-10, "value", note="two computations of the load"))
 
-_HERTZ_TIGHT = ["hertz_plane", "hertz_circle_vertical", "hertz_plane_nu0.4999"]
+_HERTZ_TIGHT = ["hertz_plane", "hertz_circle_vertical", "hertz_plane_nu0.4999", "hertz_sphere_axisymmetric"]
 _add(_HERTZ_TIGHT, ["a", "p_max"],
      Check("analytic", 3e-3, note="Hertz; measured 3e-4..1.6e-3: the finite disc, its far field and h = a/30"))
 _add(_HERTZ_TIGHT, ["pressure_l2_rel_error"], Check("analytic", 1e-2, "value", note="L2 error of p against Hertz's ellipse"))

@@ -51,6 +51,8 @@ CASES = [
     (SPHERE, ["-R", "0"], "-R"),
     (SPHERE, ["-pressure", "-1"], "-pressure"),
     (SPHERE, ["-mesh", "{tmp}/disc2d.msh"], "-mesh"),
+    (SPHERE, ["-axisymmetric", "2"], "-axisymmetric"),
+    (SPHERE, ["-axisymmetric", "1", "-mesh", "{tmp}/disc2d.msh"], "-mesh"),
     (CLAMPED, ["-rho", "0"], "-rho"),
     (CLAMPED, ["-E", "0"], "-E"),
     (CLAMPED, ["-order", "3"], "-order"),
