@@ -86,6 +86,8 @@ _add(["oring_plates"], ["force_c0.2"],
            note="Lindley's law; the ratio is held to 1 % of our mesh-converged 1.3128 (nodal: 1.3147, 1.3135, "
                 "1.3130, 1.3129 for h = R/12..R/96)"))
 _add(["oring_plates"], ["force_c0.1", "force_c0.3"], Check("info", note="Lindley's empirical law"))
+_add(["oring_torus"], ["force_c0.1", "force_c0.2", "force_c0.3"],
+     Check("info", note="Lindley's empirical law; the free torus meets it to 0.4 % at c = 0.2 (README)"))
 _add(["oring_groove"], ["floor_ceiling_balance_rel_error", "walls_balance_rel_error", "floor_wall_symmetry_rel_error"],
      Check("balance", 1e-8, "value", note="opposite faces balance; the problem is symmetric about y = x"))
 

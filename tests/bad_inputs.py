@@ -12,7 +12,7 @@ from freefem import run_driver  # noqa: E402
 
 CUBE, PLANE, CIRCLE = "benchmarks/cube.edp", "benchmarks/hertz_plane.edp", "benchmarks/hertz_circle.edp"
 SPHERE, CLAMPED, ORING = "benchmarks/hertz_sphere.edp", "benchmarks/clamped_square.edp", "benchmarks/oring.edp"
-PLATEN, TUBE = "benchmarks/platen_block.edp", "benchmarks/rivlin_tube.edp"
+PLATEN, TUBE, TORUS = "benchmarks/platen_block.edp", "benchmarks/rivlin_tube.edp", "benchmarks/oring_torus.edp"
 
 # (driver, arguments ({tmp} is a scratch folder holding the files of make_files), the word the
 # error line must contain)
@@ -66,6 +66,9 @@ CASES = [
     (ORING, ["-h", "1"], "-h"),
     (PLATEN, ["-nu", "0.5"], "-nu"),
     (TUBE, ["-inner", "0.9"], "-inner"),
+    (TORUS, ["-meanradius", "0.3"], "-meanradius"),
+    (TORUS, ["-holdcentre", "2"], "-holdcentre"),
+    (TORUS, ["-nu", "0.5", "-volumetric", "penalty"], "-nu"),
     (TUBE, ["-B", "0.5"], "-B"),
     (TUBE, ["-nu", "0.5", "-volumetric", "penalty"], "-nu"),
     (PLATEN, ["-push", "0.3"], "-push"),
