@@ -175,16 +175,19 @@ def volumetric_study(oring_levels, hertz_levels, repeat):
     return rows
 
 
-def sphere_study(levels):
+def sphere_study(levels, axisymmetric_levels=()):
+    """3D Hertz sphere at the given levels, then the same sphere from its meridian section."""
     rows = []
-    for level in levels:
-        out_dir = f"{OUT}/sphere_a{level}"
-        run = measured(f"sphere a/{level}", 1, "benchmarks/hertz_sphere.edp", ["-h", repr(A_SPHERE / level)], out_dir)
+    for level, axisymmetric in [(l, False) for l in levels] + [(l, True) for l in axisymmetric_levels]:
+        out_dir = f"{OUT}/sphere_a{level}" + ("_axisymmetric" if axisymmetric else "")
+        run = measured(f"sphere a/{level}", 1, "benchmarks/hertz_sphere.edp",
+                       ["-h", repr(A_SPHERE / level)] + (["-axisymmetric", "1"] if axisymmetric else []), out_dir)
         if run is None:
             continue
         s, wall, rss, _ = run
         internal, callbacks = ipopt_cpu(out_dir)
-        rows.append({"level": f"a/{level}", "ndof": s["ndof"], "iterations": s["ipopt_iterations"], "wall_s": wall,
+        rows.append({"level": f"a/{level}" + (" (axisymmetric)" if axisymmetric else ""), "ndof": s["ndof"],
+                     "iterations": s["ipopt_iterations"], "wall_s": wall,
                      "solve_step_s": solve_seconds(s), "ipopt_internal_cpu_s": internal,
                      "callbacks_cpu_s": callbacks, "peak_rss_mb": rss,
                      "a_error": s["results"]["a"]["rel_error"], "p_max_error": s["results"]["p_max"]["rel_error"]})
@@ -214,7 +217,7 @@ def main():
     hertz = hertz_study([20] if args.smoke else [40, 80, 160, 320, 480], repeat)
     cube = cube_study([3] if args.smoke else [8, 12], repeat)
     hertz_newton = hertz_newton_study([10] if args.smoke else [40, 80, 160], repeat)
-    sphere = sphere_study([8] if args.smoke else [24, 36])
+    sphere = sphere_study([8] if args.smoke else [24, 36], [8] if args.smoke else [30, 60, 120])
     volumetric = volumetric_study([12] if args.smoke else [12, 24, 48], [10] if args.smoke else [20, 40, 80], repeat)
     growth = slope(hertz, "ndof", "solve_step_s")
     data = {"hertz_plane": hertz, "hertz_time_growth_exponent": growth, "cube_ipopt_vs_newton": cube,

@@ -41,7 +41,7 @@ def draw_cube(rng):
     C01 = 10 ** rng.uniform(-1, 1) if material == "mooney" else 0.0
     nu = 0.5 if rng.random() < 0.2 else rng.uniform(0.0, 0.4999)   # one in five exactly incompressible
     pressure = rng.uniform(0.05, 1.0) * (C10 + C01)
-    dim = rng.choice(["2", "2", "3"])
+    dim = rng.choice(["2", "2", "3", "axi"])   # axi: the axisymmetric cylinder
     n = str(rng.randint(2, 3) if dim == "3" else rng.randint(3, 6))
     foundation = rng.choice(["0", "1"])
     return "benchmarks/cube.edp", ["-material", material, "-C10", f"{C10:.6g}", "-C01", f"{C01:.6g}", "-nu", f"{nu:.4f}",
@@ -58,7 +58,18 @@ def draw_oring(rng):
                                     "-h", f"{h:.6g}", "-steps", "6"], R
 
 
-DRAWS = [draw_hertz, draw_cube, draw_oring]
+def draw_sphere_axisymmetric(rng):
+    E = 10 ** rng.uniform(4, 7)
+    nu = rng.uniform(0.0, 0.4999)
+    R = rng.uniform(0.5, 2.0)
+    a_over_R = rng.uniform(0.05, 0.12)
+    # a = (3 P R (1 - nu^2) / (4 E))^(1/3) with P = f pi R^2
+    f = (a_over_R * R) ** 3 * 4 * E / (3 * R * (1 - nu ** 2) * math.pi * R ** 2)
+    return "benchmarks/hertz_sphere.edp", ["-axisymmetric", "1", "-E", f"{E:.6g}", "-nu", f"{nu:.4f}", "-R", f"{R:.4f}",
+                                          "-pressure", f"{f:.6g}"], R
+
+
+DRAWS = [draw_hertz, draw_cube, draw_oring, draw_sphere_axisymmetric]
 
 
 def check_case(index, script, args, size, out_root):

@@ -68,6 +68,8 @@ CASES = [
     (TUBE, ["-inner", "0.9"], "-inner"),
     (TORUS, ["-meanradius", "0.3"], "-meanradius"),
     (TORUS, ["-holdcentre", "2"], "-holdcentre"),
+    (TORUS, ["-case", "radial", "-holdcentre", "1"], "-holdcentre"),
+    (TORUS, ["-stretch", "-0.1"], "-stretch"),
     (TORUS, ["-nu", "0.5", "-volumetric", "penalty"], "-nu"),
     (TUBE, ["-B", "0.5"], "-B"),
     (TUBE, ["-nu", "0.5", "-volumetric", "penalty"], "-nu"),
