@@ -762,6 +762,15 @@ def test_no_stale_outputs():
     left = os.listdir(o)
     check("stale: an interrupted run leaves no summary.json, .vtu or pressure.csv of the run before",
           not ({"summary.json", "hertz_plane.vtu", "pressure.csv"} & set(left)), str(sorted(left)))
+    mine = out("stale user files")
+    os.makedirs(mine)
+    for name in ("data.csv", "notes.vtu", "summary.txt"):
+        open(os.path.join(mine, name), "w").write("the user's\n")
+    run_driver("benchmarks/platen_block.edp", ["-n", "10", "-steps", "1"], mine)
+    code, _, _ = run_driver("benchmarks/platen_block.edp", ["-n", "10", "-steps", "1"], mine)
+    check("stale: a run removes only what a run wrote (the user's .csv, .vtu and other files stay)",
+          code == 0 and all(os.path.exists(os.path.join(mine, n)) for n in ("data.csv", "notes.vtu", "summary.txt")),
+          str(sorted(os.listdir(mine))))
 
 
 def test_output_folder_errors():
