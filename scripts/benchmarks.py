@@ -28,5 +28,8 @@ BENCHMARKS = [
     ("cube_2d_mooney_incompressible", "benchmarks/cube.edp", ["-material", "mooney", "-dim", "2", "-nu", "0.5"]),
     ("cube_3d_neohookean_incompressible", "benchmarks/cube.edp", ["-material", "neohookean", "-dim", "3", "-n", "3", "-nu", "0.5"]),
     ("rivlin_tube", "benchmarks/rivlin_tube.edp", []),
+    ("hertz_two_cylinders", "benchmarks/hertz_two_cylinders.edp", []),
+    ("hertz_two_cylinders_swapped", "benchmarks/hertz_two_cylinders.edp", ["-slave", "upper"]),
+    ("hertz_two_spheres", "benchmarks/hertz_two_spheres.edp", []),
     ("hertz_plane_nu0.4999", "benchmarks/hertz_plane.edp", ["-volumetric", "nodal", "-nu", "0.4999"]),
 ]

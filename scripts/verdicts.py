@@ -70,7 +70,19 @@ _add(["hertz_circle_exact", "hertz_circle_linearized"], ["a", "p_max"],
 _add(["hertz_sphere"], ["a", "p_max"], Check("analytic", 3e-2, note="3D Hertz on a coarse mesh (h = a/8)"))
 _add(["hertz_plane_neohookean"], ["a", "p_max"],
      Check("info", note="finite strain (3 % at the contact) moves Neo-Hookean 0.6 % from the small-strain Hertz"))
-_HERTZ = _HERTZ_TIGHT + ["hertz_circle_exact", "hertz_circle_linearized", "hertz_sphere", "hertz_plane_neohookean"]
+_TWO_BODY = ["hertz_two_cylinders", "hertz_two_cylinders_swapped", "hertz_two_spheres"]
+_add(["hertz_two_cylinders", "hertz_two_cylinders_swapped"], ["a", "p_max"],
+     Check("analytic", 5e-3, note="two-body Hertz; measured 2.5e-4..1.9e-3 (slave lower / upper, h = a/30)"))
+_add(["hertz_two_cylinders", "hertz_two_cylinders_swapped"], ["pressure_l2_rel_error"],
+     Check("analytic", 1.5e-2, "value", note="L2 error of p against Hertz's ellipse; measured 0.3-0.4 %"))
+_add(["hertz_two_spheres"], ["a", "p_max"],
+     Check("analytic", 3e-2, note="two-sphere Hertz on a coarse mesh (h = a/8); measured 0.96 %, 0.02 %"))
+_add(_TWO_BODY, ["action_reaction_rel_error"],
+     Check("balance", 1e-12, "value", note="the pair's force on the master is minus that on the slave"))
+_add(_TWO_BODY, ["upper_balance_rel_error", "lower_balance_rel_error"],
+     Check("balance", 1e-8, "value", note="each body alone: applied + contact + reactions = 0"))
+_add(_TWO_BODY, ["master_force"], Check("exact", 1e-8, note="the applied load, carried to the master body"))
+_HERTZ = _HERTZ_TIGHT + ["hertz_circle_exact", "hertz_circle_linearized", "hertz_sphere", "hertz_plane_neohookean"] + _TWO_BODY
 _add(_HERTZ, ["contact_force"], Check("exact", 1e-8, note="the applied load"))
 
 _CLAMPED_NOTE = "reference/clamped_square.json (P2, n = 25..200, Richardson); bound ~1.5x the n = 25 error"

@@ -13,6 +13,7 @@ from freefem import run_driver  # noqa: E402
 CUBE, PLANE, CIRCLE = "benchmarks/cube.edp", "benchmarks/hertz_plane.edp", "benchmarks/hertz_circle.edp"
 SPHERE, CLAMPED, ORING = "benchmarks/hertz_sphere.edp", "benchmarks/clamped_square.edp", "benchmarks/oring.edp"
 PLATEN, TUBE, TORUS = "benchmarks/platen_block.edp", "benchmarks/rivlin_tube.edp", "benchmarks/oring_torus.edp"
+CYLINDERS, SPHERES = "benchmarks/hertz_two_cylinders.edp", "benchmarks/hertz_two_spheres.edp"
 
 # (driver, arguments ({tmp} is a scratch folder holding the files of make_files), the word the
 # error line must contain)
@@ -53,6 +54,16 @@ CASES = [
     (SPHERE, ["-mesh", "{tmp}/disc2d.msh"], "-mesh"),
     (SPHERE, ["-axisymmetric", "2"], "-axisymmetric"),
     (SPHERE, ["-axisymmetric", "1", "-mesh", "{tmp}/disc2d.msh"], "-mesh"),
+    (CYLINDERS, ["-nu1", "0.5"], "-nu1"),
+    (CYLINDERS, ["-E2", "0"], "-E2"),
+    (CYLINDERS, ["-R2", "-1"], "-R2"),
+    (CYLINDERS, ["-slave", "middle"], "-slave"),
+    (CYLINDERS, ["-constraint", "finite"], "-constraint"),
+    (CYLINDERS, ["-normal", "slave"], "-normal"),
+    (CYLINDERS, ["-gap", "-1e-3"], "overlap"),
+    (SPHERES, ["-nu2", "0.7"], "-nu2"),
+    (SPHERES, ["-E1", "-1"], "-E1"),
+    (SPHERES, ["-zone", "0.9"], "-zone"),
     (CLAMPED, ["-rho", "0"], "-rho"),
     (CLAMPED, ["-E", "0"], "-E"),
     (CLAMPED, ["-order", "3"], "-order"),

@@ -68,7 +68,7 @@ def test_law_derivatives():
     in 2D and 3D: truncation ~h^2 = 1e-10, so 1e-8 is what the method allows with margin. The
     expected cases come from the registry, so a new law is checked without touching this file."""
     laws = registered_laws()
-    check_script_cases("fd_laws", 2 * len(laws))
+    check_script_cases("fd_laws", 2 * len(laws) + 2)   # + two materials on two regions (2 checks)
     code, output, _ = run_driver("tests/fd_laws.edp", [], None)
     for law in laws:
         check(f"fd_laws: law {law} checked in 2D and 3D",
@@ -937,6 +937,72 @@ def test_oring_torus():
                   and s["results"]["max_penetration"]["computed"] <= 1e-10 * 0.52, f"{fb:.1e}")
 
 
+# ---------------------------------------------------------------- contact between bodies
+def two_body_case(label, script, args, bound_a, bound_l2):
+    """A two-body Hertz run: a and p_max within bound_a of the two-body Hertz values, the L2 error
+    of p within bound_l2, action = reaction between the bodies (exact by construction: 1e-12), each
+    body's own balance and the global one to 1e-8 (the solver's tolerance), the load carried to the
+    master body to 1e-8, no penetration of slave nodes beyond 1e-10 of the body size, no tensile
+    pressure beyond 1e-6 p_max (IPOPT's complementarity)."""
+    s = run_summary(label, script, args)
+    if s is None:
+        return None
+    r = s["results"]
+    check(f"{label}: IPOPT status", s["ipopt_status"] == "Solve_Succeeded", s["ipopt_status"])
+    for q in ("a", "p_max"):
+        check(f"{label}: {q} within {bound_a:.1%} of two-body Hertz", r[q]["rel_error"] <= bound_a,
+              f"{q}={r[q]['computed']:.6g} Hertz={r[q]['reference']:.6g} rel={r[q]['rel_error']:.2e}")
+    if bound_l2 is not None:
+        l2 = r["pressure_l2_rel_error"]["computed"]
+        check(f"{label}: L2 error of p within {bound_l2:.1%}", l2 <= bound_l2, f"{l2:.2e}")
+    ar = r["action_reaction_rel_error"]["computed"]
+    check(f"{label}: action = reaction between the bodies to 1e-12", ar <= 1e-12, f"{ar:.1e}")
+    for q in ("force_balance_rel_error", "upper_balance_rel_error", "lower_balance_rel_error"):
+        v = r[q]["computed"]
+        check(f"{label}: {q} <= 1e-8", v <= 1e-8, f"{v:.1e}")
+    for q in ("contact_force", "master_force"):
+        check(f"{label}: {q} = applied load to 1e-8", r[q]["rel_error"] <= 1e-8, f"{r[q]['rel_error']:.1e}")
+    size = 2 * max(s["parameters"]["R1"], s["parameters"]["R2"])
+    pen = r["max_penetration"]["computed"]
+    check(f"{label}: penetration <= 1e-10 of the bodies' size", pen <= 1e-10 * size, f"{pen:.1e}")
+    rows = read_pressure_csv(label) or []
+    tensile = min((float(row["pressure"]) for row in rows), default=-1e300)
+    check(f"{label}: pressure.csv, no tensile pressure beyond 1e-6 p_max", rows and tensile >= -1e-6 * r["p_max"]["reference"],
+          f"{tensile:.2e}")
+    return s
+
+
+def test_two_bodies():
+    """Issue 13. Two elastic cylinders (default: E2 = E1 / 3, the softer lower disc the slave) and
+    the swapped slave/master choice, both within the issue's 0.5 % on a and p_max (measured
+    0.06 %/0.03 % and 0.19 %/0.09 %) and 1.5 % in L2; the swap moves a by 0.13 % (the bias of the
+    choice, held below 0.3 %). The rigid limit (E2 = 1e4 E1, the master normal: the pair's row is then
+    the obstacle's linearised gap (43)) reproduces hertz_circle -constraint linearized to 1e-3
+    (measured 3e-5; what is left is the lower disc's compliance and its facets against the spline).
+    Two spheres in 3D on a coarse mesh: within 3 % (measured 0.96 %, 0.02 %)."""
+    bound = verdicts.bound("hertz_two_cylinders", "a")
+    l2 = verdicts.check("hertz_two_cylinders", "pressure_l2_rel_error").bound
+    base = two_body_case("two cylinders", "benchmarks/hertz_two_cylinders.edp", [], bound, l2)
+    swapped = two_body_case("two cylinders, upper slave", "benchmarks/hertz_two_cylinders.edp", ["-slave", "upper"], bound, l2)
+    if base and swapped:
+        check("two cylinders: the default slave is the softer (lower) disc", base["parameters"]["slave"] == "softer")
+        d = abs(base["results"]["a"]["computed"] - swapped["results"]["a"]["computed"]) / base["results"]["a"]["reference"]
+        check("two cylinders: slave/master bias on a below 0.3 % (measured 0.13 %)", d <= 3e-3, f"{d:.2e}")
+    two_body_case("two cylinders, master normal", "benchmarks/hertz_two_cylinders.edp", ["-normal", "master", "-slave", "lower"],
+                  bound, l2)
+    rigid = run_summary("two cylinders, rigid limit", "benchmarks/hertz_two_cylinders.edp",
+                        ["-E2", "2.1e9", "-normal", "master", "-slave", "upper"])
+    circle = run_summary("circle for the rigid limit", "benchmarks/hertz_circle.edp", ["-constraint", "linearized"])
+    if rigid and circle:
+        for q in ("a", "p_max"):
+            d = abs(rigid["results"][q]["computed"] - circle["results"][q]["computed"]) / circle["results"][q]["computed"]
+            check(f"two cylinders: rigid limit E2 = 1e4 E1 reproduces hertz_circle linearized, {q} to 1e-3", d <= 1e-3, f"{d:.1e}")
+    two_body_case("two cylinders E1=E2 nu 0.25/0.35", "benchmarks/hertz_two_cylinders.edp",
+                  ["-E2", "2.1e5", "-nu1", "0.25", "-nu2", "0.35"], bound, l2)
+    two_body_case("two spheres", "benchmarks/hertz_two_spheres.edp", [], verdicts.bound("hertz_two_spheres", "a"), None)
+    check_script_cases("fd_pairs", 12)
+
+
 def main():
     tests = [test_law_derivatives, test_linear_stiffness, test_obstacle_derivatives, test_cube, test_cube_second_parameter_set, test_cube_on_foundation,
              test_hertz_plane, test_hertz_circle, test_hertz_hyperelastic, test_known_contact_newton,
@@ -947,7 +1013,7 @@ def main():
              test_callback_error, test_unreachable_tolerance, test_no_stale_outputs, test_output_folder_errors,
              test_external_commands, test_volumetric_derivatives, test_incompressible_cube, test_rivlin_tube,
              test_hertz_near_incompressible, test_axisymmetric_cylinder, test_axisymmetric_sphere,
-             test_oring_torus]
+             test_oring_torus, test_two_bodies]
     only = sys.argv[1:]
     for test in tests:
         if only and not any(o in test.__name__ for o in only):
