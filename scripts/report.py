@@ -408,6 +408,19 @@ def sections():
             lambda: fig_deformed("hertz_sphere", "hertz_sphere_deformed.png",
                                  "3D Hertz: von Mises stress on the symmetry plane y = 0", [hline(0, "rigid plane")],
                                  zoom=(0, 0.25, -0.04, 0.16), slice3d=True)]),
+        ("Contact between two elastic bodies (two-body Hertz, preprint (49)-(50))",
+         ["hertz_two_cylinders", "hertz_two_cylinders_swapped", "hertz_two_spheres"],
+         "Two elastic cylinders (E2 = E1 / 3) and two elastic spheres pressed together through a contact pair "
+         "(small sliding, averaged normal). The softer body is the slave by default; the swapped choice is the "
+         "second run, 0.13 % away in a. The pair's force on the master is minus that on the slave to 1e-16, and "
+         "each body balances on its own.", [
+            lambda: fig_hertz_pressure(["hertz_two_cylinders", "hertz_two_cylinders_swapped"], "hertz_two_cylinders_pressure.png",
+                                       "Two elastic cylinders: contact pressure on the slave side\nE1 = 2.1e5, E2 = 7e4 Pa, nu = 0.3, R1 = 1, R2 = 1.2 m, f = 250 Pa, h = a/30"),
+            lambda: fig_deformed("hertz_two_cylinders", "hertz_two_cylinders_deformed.png",
+                                 "Two elastic cylinders: von Mises stress on both bodies", [], zoom=(0, 0.25, -0.15, 0.1)),
+            lambda: fig_hertz_pressure(["hertz_two_spheres"], "hertz_two_spheres_pressure.png",
+                                       "Two elastic spheres (3D): contact pressure against r\nE1 = 2.1e5, E2 = 7e4 Pa, nu = 0.3, R1 = 1, R2 = 1.2 m, f = 100 Pa, h = a/8",
+                                       unit_x="r (m)")]),
         ("Clamped square under its own weight (preprint 4.3)", ["clamped_square"],
          "A steel square clamped on one side bends onto a rigid wall under its own weight; the upper part presses, "
          "the lower part lifts off. No analytic answer exists: the references come from our own P2 mesh study "
