@@ -31,5 +31,7 @@ BENCHMARKS = [
     ("hertz_two_cylinders", "benchmarks/hertz_two_cylinders.edp", []),
     ("hertz_two_cylinders_swapped", "benchmarks/hertz_two_cylinders.edp", ["-slave", "upper"]),
     ("hertz_two_spheres", "benchmarks/hertz_two_spheres.edp", []),
+    ("oring_flange_steel", "benchmarks/oring_flange.edp", []),
+    ("oring_flange_soft", "benchmarks/oring_flange.edp", ["-Ef", "40", "-nuf", "0.45", "-steps", "5"]),
     ("hertz_plane_nu0.4999", "benchmarks/hertz_plane.edp", ["-volumetric", "nodal", "-nu", "0.4999"]),
 ]

@@ -14,6 +14,7 @@ CUBE, PLANE, CIRCLE = "benchmarks/cube.edp", "benchmarks/hertz_plane.edp", "benc
 SPHERE, CLAMPED, ORING = "benchmarks/hertz_sphere.edp", "benchmarks/clamped_square.edp", "benchmarks/oring.edp"
 PLATEN, TUBE, TORUS = "benchmarks/platen_block.edp", "benchmarks/rivlin_tube.edp", "benchmarks/oring_torus.edp"
 CYLINDERS, SPHERES = "benchmarks/hertz_two_cylinders.edp", "benchmarks/hertz_two_spheres.edp"
+FLANGE = "benchmarks/oring_flange.edp"
 
 # (driver, arguments ({tmp} is a scratch folder holding the files of make_files), the word the
 # error line must contain)
@@ -64,6 +65,15 @@ CASES = [
     (SPHERES, ["-nu2", "0.7"], "-nu2"),
     (SPHERES, ["-E1", "-1"], "-E1"),
     (SPHERES, ["-zone", "0.9"], "-zone"),
+    (SPHERES, ["-constraint", "large"], "-constraint"),
+    (FLANGE, ["-Ef", "0"], "-Ef"),
+    (FLANGE, ["-nuf", "0.5"], "-nuf"),
+    (FLANGE, ["-nu", "0.5"], "-nu"),
+    (FLANGE, ["-W", "0.6"], "-W"),
+    (FLANGE, ["-T", "-1"], "-T"),
+    (FLANGE, ["-C10", "0"], "-C10"),
+    (FLANGE, ["-cmax", "1.2"], "-cmax"),
+    (FLANGE, ["-constraint", "finite"], "-constraint"),
     (CLAMPED, ["-rho", "0"], "-rho"),
     (CLAMPED, ["-E", "0"], "-E"),
     (CLAMPED, ["-order", "3"], "-order"),
