@@ -10,6 +10,8 @@ Studies (timings are medians of --repeat runs below 200k DOFs, single runs above
     Neo-Hookean Hertz, IPOPT against plain Newton given the contact set IPOPT found
     (hertz_plane.edp -newton 1), with the difference of the two solutions.
  4. The 3D Hertz sphere at ~67k and ~200k DOFs (single runs).
+ 5. Two bodies: the two elastic cylinders (small sliding, and updated pairing) against the disc on
+    the rigid cylinder (hertz_circle.edp -constraint linearized) at the same element size.
 Writes bench.json and BENCH.md in results/bench (--out).
     bench.py [--smoke] [--repeat 3] [--out results/bench]"""
 
@@ -198,6 +200,37 @@ def sphere_study(levels, axisymmetric_levels=()):
     return rows
 
 
+A_TWO_CYLINDERS = 0.0775818960   # Hertz half-width of the default hertz_two_cylinders (m)
+
+
+def two_body_study(levels, repeat):
+    """Two elastic cylinders against one disc on a rigid cylinder, the same element size h."""
+    rows = []
+    for level in levels:
+        h = repr(A_TWO_CYLINDERS / level)
+        runs = {}
+        for key, script, extra in (("pair", "benchmarks/hertz_two_cylinders.edp", []),
+                                   ("updated", "benchmarks/hertz_two_cylinders.edp", ["-constraint", "updated"]),
+                                   ("rigid", "benchmarks/hertz_circle.edp", ["-constraint", "linearized"])):
+            run = measured(f"two bodies a/{level} {key}", repeat, script, ["-h", h] + extra, f"{OUT}/two_bodies_a{level}_{key}")
+            if run is not None:
+                runs[key] = run
+        if len(runs) < 3:
+            continue
+        pair, updated, rigid = runs["pair"][0], runs["updated"][0], runs["rigid"][0]
+        row = {"level": f"a/{level}", "ndof": pair["ndof"], "iterations": pair["ipopt_iterations"],
+               "solve_step_s": solve_seconds(pair), "wall_s": runs["pair"][1], "a_error": pair["results"]["a"]["rel_error"],
+               "updated_iterations": updated["ipopt_iterations"], "updated_solve_s": solve_seconds(updated),
+               "updated_resolves": updated["results"]["pairing_resolves"]["computed"],
+               "rigid_ndof": rigid["ndof"], "rigid_iterations": rigid["ipopt_iterations"], "rigid_solve_s": solve_seconds(rigid)}
+        row["pair_over_rigid_per_dof"] = (row["solve_step_s"] / row["ndof"]) / (row["rigid_solve_s"] / row["rigid_ndof"])
+        rows.append(row)
+        print(f"two bodies a/{level}: {row['ndof']} dofs, {row['iterations']} it., solve {row['solve_step_s']:.1f} s; "
+              f"updated {row['updated_iterations']} it. ({row['updated_resolves']:.0f} re-solves); rigid {row['rigid_ndof']} dofs, "
+              f"{row['rigid_iterations']} it., solve {row['rigid_solve_s']:.1f} s", flush=True)
+    return rows
+
+
 def slope(rows, x, y):
     pts = [(math.log(r[x]), math.log(r[y])) for r in rows if r[y] > 0]
     if len(pts) < 2:
@@ -222,10 +255,11 @@ def main():
     hertz_newton = hertz_newton_study([10] if args.smoke else [40, 80, 160], repeat)
     sphere = sphere_study([8] if args.smoke else [24, 36], [8] if args.smoke else [30, 60, 120])
     volumetric = volumetric_study([12] if args.smoke else [12, 24, 48], [10] if args.smoke else [20, 40, 80], repeat)
+    two_bodies = two_body_study([10] if args.smoke else [30, 60, 120], repeat)
     growth = slope(hertz, "ndof", "solve_step_s")
     data = {"hertz_plane": hertz, "hertz_time_growth_exponent": growth, "cube_ipopt_vs_newton": cube,
             "hertz_neohookean_ipopt_vs_newton": hertz_newton,
-            "hertz_sphere": sphere, "volumetric": volumetric, "smoke": args.smoke, "repeat": repeat, "total_s": time.time() - start}
+            "hertz_sphere": sphere, "volumetric": volumetric, "two_bodies": two_bodies, "smoke": args.smoke, "repeat": repeat, "total_s": time.time() - start}
     out = os.path.join(ROOT, OUT)
     os.makedirs(out, exist_ok=True)
     with open(os.path.join(out, "bench.json"), "w") as f:
@@ -251,15 +285,22 @@ def main():
     t4 = markdown.table(("case", "h", "form", "DOFs", "IPOPT it.", "solve (s)", "error"),
                         [(r["case"], r["level"], r["form"], r["ndof"], r["iterations"], f"{r['solve_s']:.1f}", f"{r['error']:.1e}")
                          for r in volumetric])
+    t5 = markdown.table(("h", "DOFs", "IPOPT it.", "solve (s)", "a err", "updated: it.", "re-solves", "solve (s)",
+                         "rigid: DOFs", "IPOPT it.", "solve (s)", "two bodies / rigid, solve time per DOF"),
+                        [(r["level"], r["ndof"], r["iterations"], f"{r['solve_step_s']:.2f}", f"{r['a_error']:.1e}",
+                          r["updated_iterations"], f"{r['updated_resolves']:.0f}", f"{r['updated_solve_s']:.2f}", r["rigid_ndof"],
+                          r["rigid_iterations"], f"{r['rigid_solve_s']:.2f}", f"{r['pair_over_rigid_per_dof']:.2f}")
+                         for r in two_bodies])
     text = (f"Hertz plane (P1, linear), solve time growing like DOFs^{growth:.2f}:\n\n{t1}\n\n"
             f"3D Neo-Hookean cube, no contact: IPOPT against plain Newton\n\n{t2}\n\n"
             f"Neo-Hookean Hertz plane: IPOPT against plain Newton given the contact set IPOPT found\n\n{t2b}\n\n"
             f"3D Hertz sphere\n\n{t3}\n\n"
             f"Volumetric treatment at nu = 0.499 (error: O-ring, of computed / Lindley at c = 0.2 against the "
-            f"mesh-converged {ORING_CONVERGED}; Hertz, of a against Hertz)\n\n{t4}")
+            f"mesh-converged {ORING_CONVERGED}; Hertz, of a against Hertz)\n\n{t4}\n\n"
+            f"Two elastic cylinders (small sliding; updated pairing) against one disc on a rigid cylinder, same h\n\n{t5}")
     print("\n" + text)
     markdown.write(os.path.join(out, "BENCH.md"), "Benchmark timings", text)
-    return 0 if hertz and cube and hertz_newton and sphere and volumetric else 1
+    return 0 if hertz and cube and hertz_newton and sphere and volumetric and two_bodies else 1
 
 
 if __name__ == "__main__":

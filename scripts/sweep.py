@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
-"""`make sweep`: randomized parameter sets for the Hertz plane, cube and O-ring plates
-drivers, each checked for what must hold whatever the data: IPOPT success, force balance
+"""`make sweep`: randomized parameter sets for the Hertz plane, cube, O-ring plates, axisymmetric
+sphere and two-cylinder drivers, each checked for what must hold whatever the data: IPOPT success, force balance
 <= 1e-8, penetration <= 1e-10 of the body size, no tensile contact pressure beyond the
 solver tolerance (1e-6 of the peak pressure), and for Hertz (linear, a/R <= 0.08, nu <= 0.45:
 above, P1 locks and the errors are only reported) and the cube their analytic errors within
-the bounds of the tests (a, p_max 0.3 %, L2 of p 1 %; w 1e-8). Prints the worst case of each check with the command that reproduces it, and
+the bounds of the tests (a, p_max 0.3 %, L2 of p 1 %; w 1e-8); for two bodies, action = reaction
+to 1e-12, each body's balance to 1e-8, and with small sliding two-body Hertz within the tests'
+bounds (0.5 %, L2 1.5 %; updated pairing adds the O(a/R) geometry Hertz drops). Prints the worst case of each check with the command that reproduces it, and
 writes results/sweep/sweep.json.
     sweep.py [--n 200] [--seed 20261122] [--jobs 2]"""
 
@@ -69,7 +71,22 @@ def draw_sphere_axisymmetric(rng):
                                           "-pressure", f"{f:.6g}"], R
 
 
-DRAWS = [draw_hertz, draw_cube, draw_oring, draw_sphere_axisymmetric]
+def draw_two_cylinders(rng):
+    E1 = 10 ** rng.uniform(4, 7)
+    E2 = E1 * 10 ** rng.uniform(-1, 1)
+    nu1, nu2 = rng.uniform(0.0, 0.45), rng.uniform(0.0, 0.45)
+    R1, R2 = rng.uniform(0.5, 2.0), rng.uniform(0.5, 2.0)
+    R = R1 * R2 / (R1 + R2)
+    E_star = 1 / ((1 - nu1 ** 2) / E1 + (1 - nu2 ** 2) / E2)
+    a = rng.uniform(0.02, 0.06) * R                  # small strain, and the zone 1.5 a < min(R1, R2) / 2
+    f = a ** 2 * math.pi * E_star / (8 * R * R1)     # a = sqrt(4 P R / (pi E*)), P = 2 f R1
+    return "benchmarks/hertz_two_cylinders.edp", [
+        "-E1", f"{E1:.6g}", "-E2", f"{E2:.6g}", "-nu1", f"{nu1:.4f}", "-nu2", f"{nu2:.4f}", "-R1", f"{R1:.4f}",
+        "-R2", f"{R2:.4f}", "-pressure", f"{f:.6g}", "-slave", rng.choice(["softer", "upper", "lower"]),
+        "-constraint", rng.choice(["small", "small", "updated"])], 2 * max(R1, R2)
+
+
+DRAWS = [draw_hertz, draw_cube, draw_oring, draw_sphere_axisymmetric, draw_two_cylinders]
 
 
 def check_case(index, script, args, size, out_root):
@@ -101,6 +118,14 @@ def check_case(index, script, args, size, out_root):
         checks["hertz_L2_p"] = (r["pressure_l2_rel_error"]["computed"], 1e-2)
     if script.endswith("cube.edp"):
         checks["cube_w"] = (r["w"]["rel_error"], 1e-8)
+    if script.endswith("hertz_two_cylinders.edp"):
+        checks["two_body_action_reaction"] = (r["action_reaction_rel_error"]["computed"], 1e-12)
+        checks["two_body_balance"] = (max(r["upper_balance_rel_error"]["computed"], r["lower_balance_rel_error"]["computed"]), 1e-8)
+        small = "updated" not in args
+        prefix = "two_body_hertz" if small else "info_two_body_updated_hertz"
+        checks[prefix + "_a"] = (r["a"]["rel_error"], 5e-3)
+        checks[prefix + "_p_max"] = (r["p_max"]["rel_error"], 5e-3)
+        checks[prefix + "_L2_p"] = (r["pressure_l2_rel_error"]["computed"], 1.5e-2)
     return {"command": cmd, "failed": False, "checks": checks, "seconds": seconds}
 
 

@@ -542,9 +542,9 @@ def test_bench_smoke():
                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     path = os.path.join(out("bench"), "bench.json")
     data = json.load(open(path)) if os.path.exists(path) else {}
-    check("bench smoke: exits 0 with the five studies in bench.json", proc.returncode == 0 and data.get("smoke")
+    check("bench smoke: exits 0 with the six studies in bench.json", proc.returncode == 0 and data.get("smoke")
           and data["hertz_plane"] and data["cube_ipopt_vs_newton"] and data["hertz_neohookean_ipopt_vs_newton"]
-          and data["hertz_sphere"] and data.get("volumetric"), proc.stdout.strip().splitlines()[-1:])
+          and data["hertz_sphere"] and data.get("volumetric") and data.get("two_bodies"), proc.stdout.strip().splitlines()[-1:])
     if data.get("cube_ipopt_vs_newton"):
         c = data["cube_ipopt_vs_newton"][0]
         check("bench smoke: IPOPT and Newton both give the exact cube (w to 1e-8)",
