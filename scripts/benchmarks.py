@@ -33,5 +33,6 @@ BENCHMARKS = [
     ("hertz_two_spheres", "benchmarks/hertz_two_spheres.edp", []),
     ("oring_flange_steel", "benchmarks/oring_flange.edp", []),
     ("oring_flange_soft", "benchmarks/oring_flange.edp", ["-Ef", "40", "-nuf", "0.45", "-steps", "5"]),
+    ("sliding_disc", "benchmarks/sliding_disc.edp", []),
     ("hertz_plane_nu0.4999", "benchmarks/hertz_plane.edp", ["-volumetric", "nodal", "-nu", "0.4999"]),
 ]

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from typing import Optional
 
 # body size of each benchmark (penetration bounds are 1e-10 of it)
-BODY_SIZE = {"cylinder": 1.0, "cube": 1.0, "hertz": 1.0, "clamped_square": 1.0, "oring": 0.52, "platen_block": 0.5, "rivlin_tube": 1.0}
+BODY_SIZE = {"sliding_disc": 3.0, "cylinder": 1.0, "cube": 1.0, "hertz": 1.0, "clamped_square": 1.0, "oring": 0.52, "platen_block": 0.5, "rivlin_tube": 1.0}
 
 
 @dataclass(frozen=True)
@@ -91,6 +91,14 @@ _add(_FLANGE, ["pairing_change"],
      Check("exact", 1e-10 * 1.04, "value", note="updated pairing settled: the last update moved no active gap by more"))
 _add(_FLANGE, ["force_lindley"], Check("info", note="Lindley's law is for rigid plates; the steel flange meets "
                                                     "oring_plates less its compliance (tests: 7.7e-5 vs 8.1e-5)"))
+_add(["sliding_disc"], ["action_reaction_rel_error"], Check("balance", 1e-12, "value", note="worst over the steps"))
+_add(["sliding_disc"], ["disc_balance_rel_error", "block_balance_rel_error"],
+     Check("balance", 1e-8, "value", note="each body alone, at the last step"))
+_add(["sliding_disc"], ["pairing_change"], Check("exact", 3e-10, "value", note="settled at every step (1e-10 of the size)"))
+_add(["sliding_disc"], ["sideways_force_ratio"],
+     Check("analytic", 1e-3, "value", note="frictionless: Fx / Fy -> 0 with h (2.7e-4 at R/40, 7.9e-5 at R/80)"))
+_add(["sliding_disc"], ["force_ripple"],
+     Check("mesh-converged", 1e-2, "value", note="Fy about its trend, from the master's facets: 5.1e-3 at R/40, 9.8e-4 at R/80"))
 _HERTZ = _HERTZ_TIGHT + ["hertz_circle_exact", "hertz_circle_linearized", "hertz_sphere", "hertz_plane_neohookean"] + _TWO_BODY
 _add(_HERTZ, ["contact_force"], Check("exact", 1e-8, note="the applied load"))
 

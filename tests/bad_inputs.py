@@ -14,7 +14,7 @@ CUBE, PLANE, CIRCLE = "benchmarks/cube.edp", "benchmarks/hertz_plane.edp", "benc
 SPHERE, CLAMPED, ORING = "benchmarks/hertz_sphere.edp", "benchmarks/clamped_square.edp", "benchmarks/oring.edp"
 PLATEN, TUBE, TORUS = "benchmarks/platen_block.edp", "benchmarks/rivlin_tube.edp", "benchmarks/oring_torus.edp"
 CYLINDERS, SPHERES = "benchmarks/hertz_two_cylinders.edp", "benchmarks/hertz_two_spheres.edp"
-FLANGE = "benchmarks/oring_flange.edp"
+FLANGE, SLIDING = "benchmarks/oring_flange.edp", "benchmarks/sliding_disc.edp"
 
 # (driver, arguments ({tmp} is a scratch folder holding the files of make_files), the word the
 # error line must contain)
@@ -74,6 +74,12 @@ CASES = [
     (FLANGE, ["-C10", "0"], "-C10"),
     (FLANGE, ["-cmax", "1.2"], "-cmax"),
     (FLANGE, ["-constraint", "finite"], "-constraint"),
+    (SLIDING, ["-E1", "0"], "-E1"),
+    (SLIDING, ["-nu", "0.5"], "-nu"),
+    (SLIDING, ["-press", "0.1"], "-press"),
+    (SLIDING, ["-L", "0.6"], "-L"),
+    (SLIDING, ["-slidesteps", "2"], "-slidesteps"),
+    (SLIDING, ["-h", "0.5"], "-h"),
     (CLAMPED, ["-rho", "0"], "-rho"),
     (CLAMPED, ["-E", "0"], "-E"),
     (CLAMPED, ["-order", "3"], "-order"),
