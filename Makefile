@@ -29,7 +29,7 @@ convergence: deps
 	$(PYTHON) scripts/hertz_convergence.py --cases plane,circle_vertical,circle_linearized,circle_exact
 
 # timings: Hertz from 10k to 1M DOFs, the cost of contact, IPOPT against Newton, 3D
-# (about 21 minutes): results/bench/BENCH.md
+# (about 25 minutes, the two-body study estimated): results/bench/BENCH.md
 bench: deps
 	$(PYTHON) scripts/bench.py
 
