@@ -38,7 +38,8 @@ N ?= 200
 sweep: deps
 	$(PYTHON) scripts/sweep.py --n $(N)
 
-# Debian's packages, then the suite's plugin (plugin/contact_runtime.cpp), which freefem++.pref loads
+# Debian's packages, then the suite's plugins: plugin/contact_runtime.cpp, which freefem++.pref loads,
+# and plugin/schur_condensation.cpp, which the condensed solve loads
 # a folder of your own for your own problem: `make workspace DIR=~/my_contact` (docs/writing_your_own_problem.md)
 workspace: deps
 	@test -n "$(DIR)" || { echo "error: give the folder: make workspace DIR=<folder>"; exit 2; }
@@ -46,11 +47,16 @@ workspace: deps
 
 deps:
 	@bash scripts/install_deps.sh
-	@$(MAKE) -s --no-print-directory plugin/contact_runtime.so
+	@$(MAKE) -s --no-print-directory plugin/contact_runtime.so plugin/schur_condensation.so
 
 plugin/contact_runtime.so: plugin/contact_runtime.cpp
 	@cd plugin && ff-c++ contact_runtime.cpp > build.log 2>&1 || { cat build.log; exit 1; }
 	@rm -f plugin/contact_runtime.o
 
+# the condensed solve's MUMPS Schur complement (include/solve/condensed_solve.idp)
+plugin/schur_condensation.so: plugin/schur_condensation.cpp
+	@cd plugin && ff-c++ schur_condensation.cpp -I/usr/include/mumps_seq -ldmumps_seq > build_schur.log 2>&1 || { cat build_schur.log; exit 1; }
+	@rm -f plugin/schur_condensation.o
+
 clean:
-	rm -rf results plugin/contact_runtime.so plugin/build.log
+	rm -rf results plugin/contact_runtime.so plugin/schur_condensation.so plugin/build.log plugin/build_schur.log

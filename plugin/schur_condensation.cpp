@@ -1,0 +1,159 @@
+// schur_condensation: the elastic problem condensed onto the contact dofs, by MUMPS's own Schur
+// complement (ICNTL(19)) and its reduction/expansion of right-hand sides (ICNTL(26)). Built by
+// `make` with ff-c++ against Debian's sequential MUMPS (libmumps-seq-dev); used by
+// include/solve/condensed_solve.idp.
+//
+// Why a plugin: FreeFEM's SchurComplement (plugin Schur-Complement) solves one right-hand side per
+// Schur column, which at 941k dofs costs 0.54 s a column, 722 columns for the Hertz plane; MUMPS
+// computes the Schur block as the last front of the one factorization, at the cost of a dense
+// update, and FreeFEM's scripts cannot reach its control parameters.
+//
+// For a quadratic energy 1/2 U'K U - b'U and contact rows that involve only the dofs c:
+//   S = K_cc - K_ci K_ii^-1 K_ic  (dense, c x c), reduced right-hand side g = b_c - K_ci K_ii^-1 b_i,
+//   and, given U_c, the rest U_i = K_ii^-1 (b_i - K_ic U_c).
+// One condensation is held at a time (a load-stepped run re-uses it for every step).
+//
+//   schurFactor(K, fixedMask, schurDofs, S): factorizes K with the dofs where fixedMask != 0 removed
+//     (identity rows: the caller puts their values in the right-hand side) and the dofs schurDofs
+//     kept as the Schur block, which it returns dense in S. Returns MUMPS's INFOG(1) (0: success).
+//   schurReduce(b, g): g = the reduced right-hand side of b.
+//   schurExpand(b, Uc, U): U = the whole solution for the right-hand side b with U(schurDofs) = Uc.
+//   schurRelease(): frees MUMPS's factors.
+#include "ff++.hpp"
+#include "AFunction_ext.hpp"
+#include <dmumps_c.h>
+#include <vector>
+
+namespace {
+const int useCommWorld = -987654;   // MUMPS's sequential communicator stand-in
+
+struct Condensation {
+  DMUMPS_STRUC_C id;
+  bool alive = false;
+  std::vector<int> rows, columns, schurList;
+  std::vector<double> values, schur, rhs, reduced;
+  long n = 0, nSchur = 0;
+
+  void release() {
+    if (!alive) return;
+    id.job = -2;
+    dmumps_c(&id);
+    alive = false;
+  }
+  void quiet() {
+    id.icntl[0] = -1; id.icntl[1] = -1; id.icntl[2] = -1; id.icntl[3] = 0;
+  }
+  // job 3 with ICNTL(26) = phase (1 reduce, 2 expand) on the right-hand side b
+  int solvePhase(const KN<double> &b, int phase) {
+    for (long k = 0; k < n; k++) rhs[k] = b[k];
+    id.rhs = rhs.data();
+    id.nrhs = 1;
+    id.lrhs = int(n);
+    id.redrhs = reduced.data();
+    id.lredrhs = int(nSchur);
+    id.icntl[25] = phase;
+    id.job = 3;
+    dmumps_c(&id);
+    id.icntl[25] = 0;
+    return id.infog[0];
+  }
+};
+Condensation condensation;
+}
+
+static long schurFactor(Matrice_Creuse<double> *const &pK, KN<double> *const &pFixed, KN<long> *const &pSchur,
+                        KNM<double> *const &pS) {
+  MatriceCreuse<double> *generic = pK->A;
+  MatriceMorse<double> *K = dynamic_cast<MatriceMorse<double> *>(generic);
+  ffassert(K && K->n == K->m);
+  const KN<double> &fixed = *pFixed;
+  const KN<long> &schurDofs = *pSchur;
+  long n = K->n, nSchur = schurDofs.N();
+  ffassert(fixed.N() == n && nSchur > 0 && nSchur < n);
+  Condensation &c = condensation;
+  c.release();
+  c.n = n; c.nSchur = nSchur;
+  c.rows.clear(); c.columns.clear(); c.values.clear();
+  c.rows.reserve(K->nnz/2 + n); c.columns.reserve(K->nnz/2 + n); c.values.reserve(K->nnz/2 + n);
+  // the lower triangle of K on the free dofs (1-based), then 1 on each fixed dof's diagonal
+  for (size_t k = 0; k < K->nnz; k++) {
+    long i = K->i[k], j = K->j[k];
+    if (fixed[i] != 0 || fixed[j] != 0) continue;
+    if (!K->half && j > i) continue;
+    if (K->half && j > i) std::swap(i, j);
+    c.rows.push_back(int(i + 1)); c.columns.push_back(int(j + 1)); c.values.push_back(K->aij[k]);
+  }
+  for (long i = 0; i < n; i++)
+    if (fixed[i] != 0) { c.rows.push_back(int(i + 1)); c.columns.push_back(int(i + 1)); c.values.push_back(1.); }
+  c.schurList.resize(nSchur);
+  for (long s = 0; s < nSchur; s++) {
+    ffassert(schurDofs[s] >= 0 && schurDofs[s] < n && fixed[schurDofs[s]] == 0);
+    c.schurList[s] = int(schurDofs[s] + 1);
+  }
+  c.schur.assign(nSchur*nSchur, 0.);
+  c.rhs.assign(n, 0.);
+  c.reduced.assign(nSchur, 0.);
+
+  DMUMPS_STRUC_C &id = c.id;
+  id.comm_fortran = useCommWorld;
+  id.par = 1;
+  id.sym = 2;   // symmetric; K_ii is positive definite, the whole K need not be (a body held by contact alone)
+  id.job = -1;
+  dmumps_c(&id);
+  c.alive = true;
+  c.quiet();
+  id.n = int(n);
+  id.nnz = (MUMPS_INT8)c.values.size();
+  id.irn = c.rows.data(); id.jcn = c.columns.data(); id.a = c.values.data();
+  id.icntl[18] = 1;            // ICNTL(19): the Schur complement, centralized
+  id.size_schur = int(nSchur);
+  id.listvar_schur = c.schurList.data();
+  id.schur = c.schur.data();
+  id.icntl[6] = 7;             // ICNTL(7): automatic choice of the ordering
+  id.job = 4;                  // analysis and factorization
+  dmumps_c(&id);
+  if (id.infog[0] < 0) { long info = id.infog[0]; c.release(); return info; }
+  // a symmetric matrix's Schur block comes back as its lower triangle by rows (ICNTL(19) = 1);
+  // the other holds MUMPS's workspace, not zeros
+  KNM<double> &S = *pS;
+  S.resize(nSchur, nSchur);
+  for (long i = 0; i < nSchur; i++)
+    for (long j = 0; j <= i; j++) S(i, j) = S(j, i) = c.schur[i*nSchur + j];
+  return id.infog[0];   // > 0: a warning
+}
+
+static long schurReduce(KN<double> *const &pb, KN<double> *const &pg) {
+  Condensation &c = condensation;
+  ffassert(c.alive && pb->N() == c.n);
+  int info = c.solvePhase(*pb, 1);
+  if (info < 0) return info;
+  pg->resize(c.nSchur);
+  for (long s = 0; s < c.nSchur; s++) (*pg)[s] = c.reduced[s];
+  return 0;
+}
+
+static long schurExpand(KN<double> *const &pb, KN<double> *const &pUc, KN<double> *const &pU) {
+  Condensation &c = condensation;
+  ffassert(c.alive && pb->N() == c.n && pUc->N() == c.nSchur);
+  for (long s = 0; s < c.nSchur; s++) c.reduced[s] = (*pUc)[s];
+  int info = c.solvePhase(*pb, 2);
+  if (info < 0) return info;
+  pU->resize(c.n);
+  for (long k = 0; k < c.n; k++) (*pU)[k] = c.rhs[k];
+  for (long s = 0; s < c.nSchur; s++) (*pU)[c.schurList[s] - 1] = (*pUc)[s];
+  return 0;
+}
+
+static long schurRelease() {
+  condensation.release();
+  return 0;
+}
+
+static void init() {
+  Global.Add("schurFactor", "(", new OneOperator4_<long, Matrice_Creuse<double> *, KN<double> *, KN<long> *, KNM<double> *>(schurFactor));
+  Global.Add("schurReduce", "(", new OneOperator2_<long, KN<double> *, KN<double> *>(schurReduce));
+  Global.Add("schurExpand", "(", new OneOperator3_<long, KN<double> *, KN<double> *, KN<double> *>(schurExpand));
+  Global.Add("schurRelease", "(", new OneOperator0<long>(schurRelease));
+}
+
+LOADFUNC(init)
