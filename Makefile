@@ -55,7 +55,7 @@ plugin/contact_runtime.so: plugin/contact_runtime.cpp
 
 # the condensed solve's MUMPS Schur complement (include/solve/condensed_solve.idp)
 plugin/schur_condensation.so: plugin/schur_condensation.cpp
-	@cd plugin && ff-c++ schur_condensation.cpp -I/usr/include/mumps_seq -ldmumps_seq > build_schur.log 2>&1 || { cat build_schur.log; exit 1; }
+	@cd plugin && ff-c++ schur_condensation.cpp -I/usr/include/mumps_seq -ldmumps_seq -lmetis > build_schur.log 2>&1 || { cat build_schur.log; exit 1; }
 	@rm -f plugin/schur_condensation.o
 
 clean:

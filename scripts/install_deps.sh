@@ -2,7 +2,7 @@
 # Installs what the suite needs on Debian/Ubuntu, skipping what is already there:
 # FreeFEM with its plugins (ff-Ipopt, iovtk, msh3, gsl) and its plugin compiler ff-c++ (with g++:
 # the suite's own plugin, plugin/contact_runtime.cpp), gmsh, python3 with matplotlib, GNU time
-# (the bench's peak-memory measurement), sequential MUMPS's headers (the condensed solve's plugin),
+# (the bench's peak-memory measurement), sequential MUMPS's and METIS's headers (the condensed solve's plugin),
 # and OpenBLAS: Debian's
 # MUMPS (IPOPT's linear solver) otherwise runs on the reference BLAS, and the factorisations
 # that dominate every contact solve take 4x longer (3D Hertz, 23.6k dofs: 53 s -> 12 s).
@@ -31,6 +31,7 @@ need awk mawk
 dpkg -s libopenblas0-pthread >/dev/null 2>&1 || missing+=(libopenblas0-pthread)
 # sequential MUMPS's headers and library, for the condensed solve's plugin (plugin/schur_condensation.cpp)
 dpkg -s libmumps-seq-dev >/dev/null 2>&1 || missing+=(libmumps-seq-dev)
+dpkg -s libmetis-dev >/dev/null 2>&1 || missing+=(libmetis-dev)
 # the report's figures: matplotlib for Debian's python3 (the Makefile runs /usr/bin/python3)
 dpkg -s python3-matplotlib >/dev/null 2>&1 || missing+=(python3-matplotlib)
 
