@@ -26,17 +26,38 @@ Same discrete problem as our suite, different solver:
     least squares over the active nodes with x <= last active x - 1e-3 h; the relative L2
     error of the nodal pressures against Hertz with the lumped weights as quadrature.
 
+Initial guess. The body's vertical rigid motion is held by the contact alone, and PETSc's
+reduced-space method counts a bounded dof as active only when it lies on its bound with a
+strictly positive residual. At u = 0 the origin touches the plane but carries no force yet
+(F = 0 there), so the first reduced Jacobian is singular (the rigid translation is free) and
+the iteration wanders off (DIVERGED_LINE_SEARCH, or contact lost). The default start is
+therefore the rigid approach u_y = -c f R / E everywhere (c = 1, --approach-factor), which
+SNES projects onto the bounds: the candidates within about a of the origin start on the plane.
+--start zero keeps the u = 0 start for comparison.
+
+Solver settings (see --help): snes_rtol 1e-10 (atol and stol off); snes_vi_zero_tolerance
+1e-12 f R / E instead of PETSc's absolute 1e-8 m (displacements here are ~1e-3 m); PETSc's
+default backtracking line search; MUMPS with its default ordering. Other PETSc options for
+the solver: --petsc NAME=VALUE (e.g. --petsc mat_mumps_icntl_7=0 for AMD).
+
 Run it with Debian's Python (python3-dolfinx 0.5.2 is a Debian package), from anywhere:
     OMP_NUM_THREADS=1 /usr/bin/python3 bench/dolfinx_hertz.py --h 0.001836226277597457
-    OMP_NUM_THREADS=1 /usr/bin/python3 bench/dolfinx_hertz.py --h a/80
+    OMP_NUM_THREADS=1 /usr/bin/python3 bench/dolfinx_hertz.py --h 0.00068858484625
     /usr/bin/python3 bench/dolfinx_hertz.py --h a/30 --mesh-only-from /tmp/hertz.msh
---h is the element size in the contact zone, in metres or as a/N (a: Hertz's half-width); it
-sets the mesh and the fit margin as in hertz_plane.edp. Without --mesh-only-from the script
-calls FreeFem++ (timed apart as freefem_mesh_s); with it, the file must be the mesh of that h.
+--h is the element size in the contact zone, in metres or as a/N with Hertz's exact a (a/30
+is hertz_plane.edp's default h); scripts/bench.py's levels use a rounded to 0.0550867877, so
+pass its h = 0.0550867877/N as a number to get the same meshes. --h sets the mesh and the fit
+margin as in hertz_plane.edp. Without --mesh-only-from the script calls FreeFem++ (timed
+apart as freefem_mesh_s); with it, the file must be the mesh of that h. The first run also
+compiles the forms (forms_s; cached in ~/.cache/fenics afterwards).
 It prints one line "RESULT {json}": sizes, SNES iterations and converged reason, the time
-split (mesh, setup, solve, post-processing, and the process's wall time since its start,
-imports included), a, p_max and their relative errors against Hertz, the pressure's relative
-L2 error, and the contact force against the applied f R.
+split (mesh read and creation, form compilation, assembly and solver setup, SNES solve,
+post-processing, and total_wall_s: the process's wall time since its start, imports
+included), a, p_max and their relative errors against Hertz, the pressure's relative L2
+error, the contact force against the applied f R, and checks of the solution (equilibrium
+residual, penetration, smallest active pressure, largest force at an inactive candidate).
+Exit status: 0, 1 on bad input or missing dolfinx, 3 when SNES fails or the Hertz report
+cannot be made (the RESULT line then has an "error" field).
 """
 import time
 
@@ -104,7 +125,7 @@ def parse_arguments():
     parser = argparse.ArgumentParser(description="Hertz plane-strain contact (hertz_plane.edp) with DOLFINx and PETSc SNES VI.")
     parser.add_argument("--h", default="a/30", help="element size in the contact zone: metres, or a/N (default a/30)")
     parser.add_argument("--mesh-only-from", metavar="FILE", help="read this FreeFEM .msh file instead of running FreeFem++")
-    parser.add_argument("--start", choices=("zero", "approach"), default="zero",
+    parser.add_argument("--start", choices=("zero", "approach"), default="approach",
                         help="initial guess: u = 0 (touching at the origin), or the rigid approach u_y = -c f R / E")
     parser.add_argument("--approach-factor", type=float, default=1.0, help="c of --start approach (default 1)")
     parser.add_argument("--snes-rtol", type=float, default=1e-10, help="SNES relative tolerance (default 1e-10)")
@@ -116,6 +137,7 @@ def parse_arguments():
     parser.add_argument("--petsc", action="append", default=[], metavar="NAME=VALUE",
                         help="extra PETSc option for the solver (prefix hertz_ is added), repeatable")
     parser.add_argument("--monitor", action="store_true", help="print SNES's residual history on stderr")
+    parser.add_argument("--pressure-csv", metavar="FILE", help="write the candidates' gaps and pressures (sorted by x)")
     arguments = parser.parse_args()
     try:
         arguments.element_size = parse_element_size(arguments.h)
@@ -129,6 +151,10 @@ def parse_arguments():
 def fail(message):
     print("error: " + message, file=sys.stderr)
     sys.exit(1)
+
+
+class ReportError(Exception):
+    """The solution does not allow the Hertz comparison (as hertz_report.idp's fail())."""
 
 
 def build_mesh_file(element_size, mesh_path):
@@ -308,11 +334,11 @@ def elliptical_pressure_fit(x, pressure, fitted):
     s0, s1, s2 = float(len(x2)), x2.sum(), (x2 ** 2).sum()
     t0, t1 = p2.sum(), (x2 * p2).sum()
     if s0 < 3:
-        fail("only %d active contact nodes: refine the contact zone (--h)" % s0)
+        raise ReportError("only %d active contact nodes: refine the contact zone (--h)" % s0)
     slope = (s0 * t1 - s1 * t0) / (s0 * s2 - s1 ** 2)
     intercept = (t0 - slope * s1) / s0
     if not (intercept > 0 and slope < 0):
-        fail("the contact pressure is not elliptical (p^2 = %g + %g x^2)" % (intercept, slope))
+        raise ReportError("the contact pressure is not elliptical (p^2 = %g + %g x^2)" % (intercept, slope))
     return math.sqrt(-intercept / slope), math.sqrt(intercept)
 
 
@@ -341,17 +367,9 @@ def import_solver_modules():
         sys.exit(1)
 
 
-def main():
-    arguments = parse_arguments()
-    import_solver_modules()
-    element_size = arguments.element_size
-    half_width, peak_pressure = hertz_half_width(), hertz_peak_pressure(hertz_half_width())
-    displacement_scale = TOP_PRESSURE * DISC_RADIUS / YOUNG_MODULUS
-    if arguments.vi_zero_tolerance is None:
-        arguments.vi_zero_tolerance = 1e-12 * displacement_scale
-    zone = 1.5 * half_width
-    timings = {}
-
+def load_mesh(arguments, timings):
+    """The mesh file (built by FreeFem++ unless given), read and turned into the DOLFINx mesh
+    with its boundary facet tags."""
     temporary_folder = None
     if arguments.mesh_only_from:
         mesh_path = arguments.mesh_only_from
@@ -360,9 +378,8 @@ def main():
         temporary_folder = tempfile.TemporaryDirectory(prefix="dolfinx_hertz_")
         mesh_path = os.path.join(temporary_folder.name, "hertz.msh")
         started = time.perf_counter()
-        build_mesh_file(element_size, mesh_path)
+        build_mesh_file(arguments.element_size, mesh_path)
         timings["freefem_mesh_s"] = time.perf_counter() - started
-
     started = time.perf_counter()
     vertices, triangles, edges, edge_labels = read_freefem_mesh(mesh_path)
     if temporary_folder is not None:
@@ -373,6 +390,53 @@ def main():
     mesh, vertex_of_original = create_dolfinx_mesh(vertices, triangles)
     facet_tags = tag_boundary_facets(mesh, vertex_of_original, edges, edge_labels)
     timings["mesh_s"] = time.perf_counter() - started
+    return vertices, triangles, edges, edge_labels, mesh, vertex_of_original, facet_tags
+
+
+def hertz_report(candidate_x, pressure, weights, active, element_size):
+    """reportHertz's comparison: the p^2-x^2 fit over the active nodes left of
+    lastActive - 1e-3 h, and the L2 error of p against Hertz over all candidates."""
+    half_width = hertz_half_width()
+    peak_pressure = hertz_peak_pressure(half_width)
+    last_active_x = float(candidate_x[active].max()) if active.any() else 0.0
+    if not last_active_x < 1.5 * half_width - element_size:
+        raise ReportError("the contact zone reaches the end of the candidate zone")
+    fitted = active & (np.abs(candidate_x) <= last_active_x - 1e-3 * element_size)
+    fitted_half_width, fitted_peak_pressure = elliptical_pressure_fit(candidate_x, pressure, fitted)
+    return {
+        "a": fitted_half_width,
+        "a_hertz": half_width,
+        "a_rel_error": relative_error(fitted_half_width, half_width),
+        "p_max": fitted_peak_pressure,
+        "p_max_hertz": peak_pressure,
+        "p_max_rel_error": relative_error(fitted_peak_pressure, peak_pressure),
+        "pressure_l2_rel_error": pressure_l2_relative_error(candidate_x, pressure, weights, half_width, peak_pressure),
+        "last_active_node_x": last_active_x,
+        "active_nodes": int(active.sum()),
+        "fitted_nodes": int(fitted.sum()),
+    }
+
+
+def write_pressure_csv(path, candidate_x, candidate_y, u_y, gap, active, pressure):
+    """The candidates sorted by x, in the columns of our pressure.csv (without x_def)."""
+    half_width = hertz_half_width()
+    reference = hertz_pressure(candidate_x, half_width, hertz_peak_pressure(half_width))
+    with open(path, "w") as csv:
+        csv.write("s,x_ref,y_ref,y_def,gap,active,pressure,reference_pressure\n")
+        for n in np.argsort(candidate_x, kind="stable"):
+            csv.write("%.12g,%.12g,%.12g,%.12g,%.12g,%d,%.12g,%.12g\n" % (
+                candidate_x[n], candidate_x[n], candidate_y[n], candidate_y[n] + u_y[n], gap[n], active[n],
+                pressure[n], reference[n]))
+
+
+def main():
+    arguments = parse_arguments()
+    import_solver_modules()
+    displacement_scale = TOP_PRESSURE * DISC_RADIUS / YOUNG_MODULUS
+    if arguments.vi_zero_tolerance is None:
+        arguments.vi_zero_tolerance = 1e-12 * displacement_scale
+    timings = {}
+    vertices, triangles, edges, edge_labels, mesh, vertex_of_original, facet_tags = load_mesh(arguments, timings)
 
     started = time.perf_counter()
     problem = ElasticContactProblem(mesh, facet_tags)
@@ -402,63 +466,57 @@ def main():
     reason = snes.getConvergedReason()
     reason_names = {value: name for name, value in vars(PETSc.SNES.ConvergedReason).items() if isinstance(value, int)}
     residual_history = snes.getConvergenceHistory()[0]
-
-    started = time.perf_counter()
-    reactions = problem.reactions(solution)
-    u_y = solution.array[candidate_y_dofs]
-    contact_forces = reactions[candidate_y_dofs]
-    pressure = contact_forces / candidate_weights
-    gap = candidate_y + u_y
-    body_size = np.ptp(vertices, axis=0).max()
-    active = gap <= 1e-9 * body_size
-    last_active_x = candidate_x[active].max() if active.any() else 0.0
-    if not last_active_x < zone - element_size:
-        fail("the contact zone reaches the end of the candidate zone")
-    fitted = active & (np.abs(candidate_x) <= last_active_x - 1e-3 * element_size)
-    fitted_half_width, fitted_peak_pressure = elliptical_pressure_fit(candidate_x, pressure, fitted)
-    l2_error = pressure_l2_relative_error(candidate_x, pressure, candidate_weights, half_width, peak_pressure)
-    contact_force = abs(contact_forces.sum())
-    applied_force = TOP_PRESSURE * DISC_RADIUS
-    free = np.ones(reactions.size, dtype=bool)
-    free[problem.fixed_dofs] = False
-    free[candidate_y_dofs[active]] = False
-    timings["post_s"] = time.perf_counter() - started
-
     result = {
         "solver": "dolfinx %s, PETSc %s SNES vinewtonrsls + MUMPS LU" % (dolfinx.__version__, ".".join(map(str, PETSc.Sys.getVersion()))),
-        "h": element_size,
+        "h": arguments.element_size,
         "ndof": problem.space.dofmap.index_map.size_global * problem.space.dofmap.index_map_bs,
         "vertices": int(vertices.shape[0]),
         "triangles": int(triangles.shape[0]),
         "candidates": int(candidates.size),
-        "start": arguments.start,
+        "start": arguments.start if arguments.start == "zero" else "approach c=%g" % arguments.approach_factor,
         "snes_iterations": snes.getIterationNumber(),
         "snes_converged_reason": "%s (%d)" % (reason_names.get(reason, "?"), reason),
         "snes_initial_residual": float(residual_history[0]) if len(residual_history) else None,
         "snes_final_residual": float(residual_history[-1]) if len(residual_history) else None,
         "snes_options": {name: str(value) for name, value in settings.items()},
-        "a": fitted_half_width,
-        "a_hertz": half_width,
-        "a_rel_error": relative_error(fitted_half_width, half_width),
-        "p_max": fitted_peak_pressure,
-        "p_max_hertz": peak_pressure,
-        "p_max_rel_error": relative_error(fitted_peak_pressure, peak_pressure),
-        "pressure_l2_rel_error": l2_error,
-        "last_active_node_x": float(last_active_x),
-        "active_nodes": int(active.sum()),
-        "fitted_nodes": int(fitted.sum()),
-        "contact_force": contact_force,
-        "applied_force": applied_force,
-        "contact_force_rel_error": relative_error(contact_force, applied_force),
-        "free_dof_residual_rel": float(np.linalg.norm(reactions[free]) / np.linalg.norm(problem.load.array)),
-        "max_penetration": float(max(0.0, -gap.min())),
-        "min_active_pressure": float(pressure[active].min()),
-        "max_inactive_force_rel": float(np.abs(contact_forces[~active]).max() / applied_force) if (~active).any() else 0.0,
     }
+    error = None if reason > 0 else "SNES did not converge"
+
+    started = time.perf_counter()
+    if error is None:
+        reactions = problem.reactions(solution)
+        u_y = solution.array[candidate_y_dofs]
+        contact_forces = reactions[candidate_y_dofs]   # the obstacle's push on the body, > 0 in compression
+        pressure = contact_forces / candidate_weights
+        gap = candidate_y + u_y
+        active = gap <= 1e-9 * np.ptp(vertices, axis=0).max()
+        try:
+            result.update(hertz_report(candidate_x, pressure, candidate_weights, active, arguments.element_size))
+        except ReportError as report_error:
+            error = str(report_error)
+        applied_force = TOP_PRESSURE * DISC_RADIUS
+        equilibrium_dofs = np.ones(reactions.size, dtype=bool)
+        equilibrium_dofs[problem.fixed_dofs] = False
+        equilibrium_dofs[candidate_y_dofs[active]] = False
+        result.update({
+            "contact_force": abs(contact_forces.sum()),
+            "applied_force": applied_force,
+            "contact_force_rel_error": relative_error(abs(contact_forces.sum()), applied_force),
+            "equilibrium_residual_rel": float(np.linalg.norm(reactions[equilibrium_dofs]) / np.linalg.norm(problem.load.array)),
+            "max_penetration": float(max(0.0, -gap.min())),
+            "min_active_pressure": float(pressure[active].min()) if active.any() else None,
+            "max_inactive_force_rel": float(np.abs(contact_forces[~active]).max() / applied_force) if (~active).any() else 0.0,
+        })
+        if arguments.pressure_csv:
+            write_pressure_csv(arguments.pressure_csv, candidate_x, candidate_y, u_y, gap, active, pressure)
+    timings["post_s"] = time.perf_counter() - started
+
     result.update({name: round(seconds, 4) for name, seconds in timings.items()})
     result["total_wall_s"] = round(seconds_since_process_start(), 3)
+    if error is not None:
+        result["error"] = error
     print("RESULT " + json.dumps(result))
-    if reason <= 0:
+    if error is not None:
         sys.exit(3)
 
 

@@ -252,6 +252,48 @@ def hertz_case(label, script, args, bound_a=verdicts.bound("hertz_plane", "a"),
     return s
 
 
+def test_condensed_path():
+    """The condensed solve (include/solve/condensed_solve.idp) against the full KKT path on the same
+    problems: the interior dofs are eliminated exactly, so both paths find the same minimiser up to
+    IPOPT's tolerance (1e-8 on the scaled KKT error): a, p_max and the contact force to 1e-6 relative,
+    the L2 error of p (relative to p_max) to 1e-6 absolute (measured: at most 9e-9 and 2e-8); each
+    path's own force balance to 1e-8 and no penetration (hertz_case's checks)."""
+    cases = [("hertz plane", "benchmarks/hertz_plane.edp", [], "hertz_plane"),
+             ("hertz plane 3 steps", "benchmarks/hertz_plane.edp", ["-steps", "3"], "hertz_plane"),
+             ("hertz circle linearized", "benchmarks/hertz_circle.edp", ["-constraint", "linearized"], "hertz_circle_exact"),
+             ("hertz sphere 3D", "benchmarks/hertz_sphere.edp", ["-h", "0.0125"], "hertz_sphere"),
+             ("two cylinders", "benchmarks/hertz_two_cylinders.edp", [], None)]
+    for label, script, args, verdict in cases:
+        runs = {}
+        for choice in ("yes", "no"):
+            name = f"condensed path {label} -condense {choice}"
+            if verdict:
+                runs[choice] = hertz_case(name, script, args + ["-condense", choice],
+                                          bound_a=verdicts.bound(verdict, "a"), bound_l2=None)
+            else:
+                runs[choice] = run_summary(name, script, args + ["-condense", choice])
+        condensed, full = runs["yes"], runs["no"]
+        if not (condensed and full):
+            continue
+        check(f"condensed path {label}: condensed onto the contact dofs only",
+              0 < condensed["results"]["condensed_dofs"]["computed"] < condensed["ndof"] / 5
+              and "condensed_dofs" not in full["results"],
+              f"{condensed['results']['condensed_dofs']['computed']:.0f} of {condensed['ndof']}")
+        for q in ("a", "p_max", "contact_force"):
+            c, f = condensed["results"][q]["computed"], full["results"][q]["computed"]
+            check(f"condensed path {label}: {q} = the full path's to 1e-6", abs(c - f) <= 1e-6 * abs(f), f"{c:.10g} vs {f:.10g}")
+        c, f = condensed["results"]["pressure_l2_rel_error"]["computed"], full["results"]["pressure_l2_rel_error"]["computed"]
+        check(f"condensed path {label}: L2 error of p = the full path's to 1e-6", abs(c - f) <= 1e-6, f"{c:.8e} vs {f:.8e}")
+    clamped = {c: run_summary(f"condensed path clamped square -condense {c}", "benchmarks/clamped_square.edp", ["-condense", c])
+               for c in ("yes", "no")}
+    if all(clamped.values()):
+        pressures = [k for k in clamped["no"]["results"] if k.startswith("pressure_at_") or k == "pressure_max"]
+        worst = max(abs(clamped["yes"]["results"][k]["computed"] - clamped["no"]["results"][k]["computed"])
+                    / abs(clamped["no"]["results"]["pressure_max"]["computed"]) for k in pressures)
+        check("condensed path clamped square (P2): wall pressures = the full path's to 1e-6 of the peak",
+              pressures and worst <= 1e-6, f"{len(pressures)} values, worst {worst:.1e}")
+
+
 def read_pressure_csv(label):
     path = os.path.join(out(label), "pressure.csv")
     if not os.path.exists(path):
@@ -1088,7 +1130,7 @@ def test_oring_flange():
 
 def main():
     tests = [test_law_derivatives, test_linear_stiffness, test_obstacle_derivatives, test_cube, test_cube_second_parameter_set, test_cube_on_foundation,
-             test_hertz_plane, test_hertz_circle, test_hertz_hyperelastic, test_known_contact_newton,
+             test_hertz_plane, test_condensed_path, test_hertz_circle, test_hertz_hyperelastic, test_known_contact_newton,
              test_clamped_square, test_hertz_sphere, test_oring_groove, test_oring_plates, test_report, test_output_contract,
              test_working_folder_untouched, test_bad_input, test_ipopt_failure_is_reported,
              test_hard_cases, test_step_cutting, test_sweep_smoke, test_bench_smoke,
