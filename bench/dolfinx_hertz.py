@@ -71,8 +71,6 @@ import subprocess
 import sys
 import tempfile
 
-import numpy as np
-
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MESH_SCRIPT = os.path.join("bench", "hertz_mesh.edp")
 
@@ -206,7 +204,7 @@ def create_dolfinx_mesh(vertices, triangles):
 def tag_boundary_facets(mesh, vertex_of_original, edges, edge_labels):
     """Facet tags with the mesh file's boundary labels 1-4 (internal label-5 arcs left out)."""
     mesh.topology.create_connectivity(1, 0)
-    facet_vertices = np.sort(mesh.topology.connectivity(1, 0).array.reshape(-1, 2), axis=1)
+    facet_vertices = np.sort(mesh.topology.connectivity(1, 0).array.reshape(-1, 2), axis=1).astype(np.int64)
     vertex_count = mesh.topology.index_map(0).size_local + mesh.topology.index_map(0).num_ghosts
     facet_keys = facet_vertices[:, 0] * vertex_count + facet_vertices[:, 1]
     facet_order = np.argsort(facet_keys)
@@ -244,8 +242,9 @@ def vertex_dof_blocks(space, mesh):
 
 
 class ElasticContactProblem:
-    """K u = b with u_x = 0 on label 1, the bound u_y >= -y at the candidates' y-dofs, and the
-    UFL residual form kept for the reactions."""
+    """Plane-strain linear elasticity on P1: the stiffness K and load b (u_x = 0 on label 1,
+    the pressure on label 2), SNES's residual F(u) = K u - b, and the UFL residual form for
+    the reactions at the converged solution."""
 
     def __init__(self, mesh, facet_tags):
         self.space = dolfinx.fem.VectorFunctionSpace(mesh, ("Lagrange", 1))
@@ -352,10 +351,11 @@ def relative_error(computed, reference):
 
 
 def import_solver_modules():
-    """DOLFINx and its PETSc/MPI bindings, as module globals (after the arguments are parsed,
-    so that --help works without them)."""
-    global MPI, PETSc, dolfinx, ufl
+    """DOLFINx, its PETSc/MPI bindings and NumPy, as module globals (after the arguments are
+    parsed, so that --help works without them)."""
+    global np, MPI, PETSc, dolfinx, ufl
     try:
+        import numpy as np
         from mpi4py import MPI
         from petsc4py import PETSc
         import dolfinx
