@@ -30,8 +30,10 @@ convergence: deps
 
 # timings: Hertz from 10k to 1M DOFs, the cost of contact, IPOPT against Newton, 3D
 # (about 25 minutes, the two-body study estimated): results/bench/BENCH.md
+# PEERS=1: also DOLFINx's SNES-VI solve of the same Hertz meshes (installs python3-dolfinx)
 bench: deps
-	$(PYTHON) scripts/bench.py
+	@if [ -n "$(PEERS)" ]; then bash scripts/install_deps.sh --peers; fi
+	$(PYTHON) scripts/bench.py $(if $(PEERS),--peers)
 
 # randomized parameter sets, checked for what must always hold (fixed seed; N=200 by default)
 N ?= 200

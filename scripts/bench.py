@@ -78,7 +78,28 @@ def solve_seconds(summary):
     return sum(st["time_s"] for st in summary["steps"])
 
 
-def hertz_study(levels, repeat):
+def dolfinx_run(h, repeat):
+    """bench/dolfinx_hertz.py (DOLFINx SNES-VI, Debian's python3-dolfinx) on the same mesh: its
+    RESULT with the median total wall time, or None."""
+    runs = []
+    for _ in range(repeat):
+        proc = subprocess.run(["/usr/bin/python3", "bench/dolfinx_hertz.py", "--h", repr(h)], cwd=ROOT,
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                              env=dict(os.environ, OMP_NUM_THREADS="1"))
+        m = re.search(r"^RESULT (.*)$", proc.stdout, re.M)
+        if proc.returncode != 0 or not m:
+            print("dolfinx: FAILED\n" + proc.stdout[-500:], flush=True)
+            return None
+        runs.append(json.loads(m.group(1)))
+    walls = [r["total_wall_s"] for r in runs]
+    best = runs[walls.index(statistics.median_low(walls))]
+    best["total_wall_s"] = statistics.median(walls)
+    return best
+
+
+def hertz_study(levels, repeat, full_path_levels, peers):
+    """Hertz plane: the condensed solve (the default), the full KKT path (-condense no) up to
+    full_path_levels, and with peers the DOLFINx SNES-VI solve of the same mesh."""
     rows = []
     for level in levels:
         h = A_HERTZ / level
@@ -101,7 +122,24 @@ def hertz_study(levels, repeat):
                "a_error": s["results"]["a"]["rel_error"], "p_max_error": s["results"]["p_max"]["rel_error"],
                "direct_solve_s": solve, "direct_assembly_s": assembly,
                "contact_over_direct_solve": step / solve, "contact_over_assembly_and_solve": step / (solve + assembly),
+               "l2_error": s["results"]["pressure_l2_rel_error"]["computed"],
+               "condensed_dofs": s["results"].get("condensed_dofs", {}).get("computed", 0),
+               "condensation_s": s["results"].get("condensation_time_s", {}).get("computed", float("nan")),
                "runs": reps}
+        if level <= full_path_levels:
+            full = measured(f"hertz a/{level} full KKT path", reps, "benchmarks/hertz_plane.edp",
+                            ["-h", repr(h), "-condense", "no"], f"{OUT}/hertz_a{level}_full")
+            if full:
+                row.update({"full_iterations": full[0]["ipopt_iterations"], "full_solve_s": solve_seconds(full[0]),
+                            "full_wall_s": full[1], "full_l2_error": full[0]["results"]["pressure_l2_rel_error"]["computed"]})
+        if peers:
+            peer = dolfinx_run(h, reps)
+            if peer:
+                row.update({"dolfinx_ndof": peer["ndof"], "dolfinx_iterations": peer["snes_iterations"],
+                            "dolfinx_solve_s": peer["solve_s"], "dolfinx_wall_s": peer["total_wall_s"],
+                            "dolfinx_l2_error": peer["pressure_l2_rel_error"], "dolfinx_a_error": peer["a_rel_error"]
+                            if "a_rel_error" in peer else float("nan"),
+                            "dolfinx_over_ours_wall": peer["total_wall_s"] / wall})
         rows.append(row)
         print(f"hertz a/{level}: {row['ndof']} dofs, {row['iterations']} it., wall {wall:.1f} s (solve {step:.1f} s), "
               f"RSS {rss:.0f} MB; direct solve {solve:.2f} s + assembly {assembly:.2f} s", flush=True)
@@ -247,11 +285,12 @@ def main():
     parser.add_argument("--smoke", action="store_true", help="the smallest level of each study only")
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--out", default=OUT)
+    parser.add_argument("--peers", action="store_true", help="also the DOLFINx SNES-VI solve of the Hertz plane (python3-dolfinx)")
     args = parser.parse_args()
     OUT = args.out
     start = time.time()
     repeat = 1 if args.smoke else args.repeat
-    hertz = hertz_study([20] if args.smoke else [40, 80, 160, 320, 480], repeat)
+    hertz = hertz_study([20] if args.smoke else [40, 80, 160, 320, 480], repeat, 20 if args.smoke else 160, args.peers)
     cube = cube_study([3] if args.smoke else [8, 12], repeat)
     hertz_newton = hertz_newton_study([10] if args.smoke else [40, 80, 160], repeat)
     sphere = sphere_study([8] if args.smoke else [24, 36], [8] if args.smoke else [30, 60, 120])
@@ -272,6 +311,19 @@ def main():
                           f"{r['solve_step_s']:.1f}", f"{r['ipopt_internal_cpu_s']:.1f}", f"{r['callbacks_cpu_s']:.1f}",
                           f"{r['peak_rss_mb']:.0f}", f"{r['a_error']:.1e}", f"{r['p_max_error']:.1e}", f"{r['direct_solve_s']:.2f}",
                           f"{r['contact_over_direct_solve']:.1f}", f"{r['contact_over_assembly_and_solve']:.1f}") for r in hertz])
+    t1b = markdown.table(("h", "DOFs", "condensed onto", "condensation (s)", "solve (s)", "wall (s)", "L2(p) err",
+                          "full KKT path: IPOPT it.", "solve (s)", "wall (s)", "full / condensed solve",
+                          "DOLFINx: DOFs", "SNES it.", "solve (s)", "wall (s)", "L2(p) err", "DOLFINx / ours, wall"),
+                         [(r["level"], r["ndof"], f"{r['condensed_dofs']:.0f}", f"{r['condensation_s']:.1f}", f"{r['solve_step_s']:.2f}",
+                           f"{r['wall_s']:.1f}", f"{r['l2_error']:.3e}",
+                           r.get("full_iterations", "-"), f"{r['full_solve_s']:.2f}" if "full_solve_s" in r else "-",
+                           f"{r['full_wall_s']:.1f}" if "full_wall_s" in r else "-",
+                           f"{r['full_solve_s'] / r['solve_step_s']:.1f}" if "full_solve_s" in r else "-",
+                           r.get("dolfinx_ndof", "-"), r.get("dolfinx_iterations", "-"),
+                           f"{r['dolfinx_solve_s']:.2f}" if "dolfinx_solve_s" in r else "-",
+                           f"{r['dolfinx_wall_s']:.1f}" if "dolfinx_wall_s" in r else "-",
+                           f"{r['dolfinx_l2_error']:.3e}" if "dolfinx_l2_error" in r else "-",
+                           f"{r['dolfinx_over_ours_wall']:.2f}" if "dolfinx_over_ours_wall" in r else "-") for r in hertz])
     t2 = markdown.table(("n", "DOFs", "IPOPT it.", "IPOPT solve (s)", "Newton it.", "Newton solve (s)", "IPOPT / Newton"),
                         [(r["n"], r["ndof"], r["ipopt_iterations"], f"{r['ipopt_solve_s']:.1f}", r["newton_iterations"],
                           f"{r['newton_solve_s']:.1f}", f"{r['ipopt_over_newton']:.2f}") for r in cube])
@@ -293,6 +345,8 @@ def main():
                           r["rigid_iterations"], f"{r['rigid_solve_s']:.2f}", f"{r['pair_over_rigid_per_dof']:.2f}")
                          for r in two_bodies])
     text = (f"Hertz plane (P1, linear), solve time growing like DOFs^{growth:.2f}:\n\n{t1}\n\n"
+            f"Hertz plane: the condensed solve (default), the full KKT path (-condense no) and "
+            f"DOLFINx's SNES-VI on the same mesh (make bench PEERS=1)\n\n{t1b}\n\n"
             f"3D Neo-Hookean cube, no contact: IPOPT against plain Newton\n\n{t2}\n\n"
             f"Neo-Hookean Hertz plane: IPOPT against plain Newton given the contact set IPOPT found\n\n{t2b}\n\n"
             f"3D Hertz sphere\n\n{t3}\n\n"

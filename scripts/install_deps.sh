@@ -35,6 +35,11 @@ dpkg -s libmetis-dev >/dev/null 2>&1 || missing+=(libmetis-dev)
 # the report's figures: matplotlib for Debian's python3 (the Makefile runs /usr/bin/python3)
 dpkg -s python3-matplotlib >/dev/null 2>&1 || missing+=(python3-matplotlib)
 
+# --peers (make bench PEERS=1): DOLFINx, for bench/dolfinx_hertz.py
+if [ "${1:-}" = "--peers" ]; then
+  dpkg -s python3-dolfinx >/dev/null 2>&1 || missing+=(python3-dolfinx)
+fi
+
 if [ ${#missing[@]} -eq 0 ]; then
   exit 0
 fi
