@@ -26,6 +26,7 @@ need ff-c++ libfreefem++-dev
 need g++ g++
 need gmsh gmsh
 need python3 python3
+need /usr/bin/python3 python3   # Debian's interpreter: matplotlib, DOLFINx (bench) and the peers' venv
 need /usr/bin/time time
 need awk mawk
 dpkg -s libopenblas0-pthread >/dev/null 2>&1 || missing+=(libopenblas0-pthread)

@@ -284,6 +284,16 @@ def test_condensed_path():
             check(f"condensed path {label}: {q} = the full path's to 1e-6", abs(c - f) <= 1e-6 * abs(f), f"{c:.10g} vs {f:.10g}")
         c, f = condensed["results"]["pressure_l2_rel_error"]["computed"], full["results"]["pressure_l2_rel_error"]["computed"]
         check(f"condensed path {label}: L2 error of p = the full path's to 1e-6", abs(c - f) <= 1e-6, f"{c:.8e} vs {f:.8e}")
+    # -condense yes where the condensation does not apply: known once the problem is set up, so the
+    # driver's header line comes first; then one error line naming -condense, exit 2, no summary.json
+    for script, args in (("benchmarks/hertz_plane.edp", ["-material", "neohookean"]), ("benchmarks/cube.edp", []),
+                         ("benchmarks/hertz_circle.edp", ["-constraint", "exact"])):
+        o = out(f"condensed path refused {script} {args}")
+        code, output, _ = run_driver(script, args + ["-condense", "yes"], o)
+        errors = [l for l in output.splitlines() if l.startswith("error:")]
+        check(f"condensed path: -condense yes refused for {os.path.basename(script)} {' '.join(args)}",
+              code == 2 and len(errors) == 1 and "-condense" in errors[0] and not os.path.exists(os.path.join(o, "summary.json")),
+              f"exit {code}: {errors}")
     clamped = {c: run_summary(f"condensed path clamped square -condense {c}", "benchmarks/clamped_square.edp", ["-condense", c])
                for c in ("yes", "no")}
     if all(clamped.values()):
