@@ -12,6 +12,8 @@ Studies (timings are medians of --repeat runs below 200k DOFs, single runs above
  4. The 3D Hertz sphere at ~67k and ~200k DOFs (single runs).
  5. Two bodies: the two elastic cylinders (small sliding, and updated pairing) against the disc on
     the rigid cylinder (hertz_circle.edp -constraint linearized) at the same element size.
+ 6. With --peers (make bench PEERS=1): DOLFINx's SNES-VI on the Hertz meshes (study 1b), and FElupe
+    on the O-ring plates (bench/felupe_oring.py) against ours at the same h.
 Writes bench.json and BENCH.md in results/bench (--out).
     bench.py [--smoke] [--repeat 3] [--out results/bench]"""
 
@@ -186,6 +188,12 @@ def hertz_newton_study(levels, repeat):
                "newton_iterations": int(r["newton_iterations"]["computed"]), "newton_solve_s": r["newton_time_s"]["computed"],
                "rel_difference": r["newton_vs_ipopt_rel_difference"]["computed"], "a_error": r["a"]["rel_error"]}
         row["ipopt_over_newton"] = row["ipopt_solve_s"] / row["newton_solve_s"]
+        row["contact_solve"] = "condensed SQP" if "condensed_dofs" in r else "IPOPT, whole problem"
+        full = measured(f"hertz Neo-Hookean a/{level} full", repeat, "benchmarks/hertz_plane.edp",
+                        ["-material", "neohookean", "-condense", "no", "-h", repr(A_HERTZ / level)], out_dir + "_full")
+        if full:
+            row.update({"full_iterations": full[0]["ipopt_iterations"], "full_solve_s": solve_seconds(full[0]),
+                        "full_over_newton": solve_seconds(full[0]) / row["newton_solve_s"]})
         rows.append(row)
         print(f"hertz Neo-Hookean a/{level}: {row['ndof']} dofs, IPOPT {row['ipopt_iterations']} it. {row['ipopt_solve_s']:.1f} s, "
               f"Newton on the known contact set {row['newton_iterations']} it. {row['newton_solve_s']:.1f} s", flush=True)
@@ -270,6 +278,46 @@ def two_body_study(levels, repeat):
     return rows
 
 
+ORING_R = 0.52   # oring.edp's default radius
+
+
+def felupe_study(divisions, repeat):
+    """The O-ring plates (15 steps to c = 0.3): ours (the default nodal form) against FElupe's P1 and
+    locking-free Q1/P0 (bench/felupe_oring.py, its own venv under results/peers) at each h = R/k."""
+    rows = []
+    for k in divisions:
+        h = ORING_R / k
+        run = measured(f"oring plates R/{k}", repeat, "benchmarks/oring.edp", ["-case", "plates", "-h", repr(h)],
+                       f"{OUT}/peers_oring_R{k}")
+        if run is None:
+            continue
+        s = run[0]
+        row = {"level": f"R/{k}", "ndof": s["ndof"], "iterations": s["ipopt_iterations"], "solve_s": solve_seconds(s),
+               "wall_s": run[1], "force": s["results"]["force_c0.3"]["computed"] / s["results"]["force_c0.3"]["reference"]}
+        for formulation in ("p1", "mixed"):
+            results = []
+            for _ in range(repeat):
+                proc = subprocess.run(["/usr/bin/python3", "bench/felupe_oring.py", "--h", f"R/{k}", "--formulation", formulation],
+                                      cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                                      env=dict(os.environ, OMP_NUM_THREADS="1"))
+                m = re.search(r"^RESULT (.*)$", proc.stdout, re.M)
+                if proc.returncode != 0 or not m:
+                    print(f"felupe {formulation} R/{k}: FAILED\n" + proc.stdout[-500:], flush=True)
+                    break
+                results.append(json.loads(m.group(1)))
+            if len(results) == repeat:
+                walls = [r["wall_s"] for r in results]
+                best = results[walls.index(statistics.median_low(walls))]
+                row.update({f"{formulation}_ndof": best["ndof"], f"{formulation}_iterations": best["newton_iterations"],
+                            f"{formulation}_solve_s": statistics.median(r["solve_s"] for r in results),
+                            f"{formulation}_wall_s": statistics.median(walls),
+                            f"{formulation}_force": best["force_c0.3"]["computed"] / best["force_c0.3"]["reference"]})
+        rows.append(row)
+        print(f"oring plates R/{k}: ours {row['ndof']} dofs {row['solve_s']:.2f} s; FElupe P1 {row.get('p1_solve_s', float('nan')):.2f} s, "
+              f"mixed {row.get('mixed_solve_s', float('nan')):.2f} s", flush=True)
+    return rows
+
+
 def slope(rows, x, y):
     pts = [(math.log(r[x]), math.log(r[y])) for r in rows if r[y] > 0]
     if len(pts) < 2:
@@ -296,10 +344,11 @@ def main():
     sphere = sphere_study([8] if args.smoke else [24, 36], [8] if args.smoke else [30, 60, 120])
     volumetric = volumetric_study([12] if args.smoke else [12, 24, 48], [10] if args.smoke else [20, 40, 80], repeat)
     two_bodies = two_body_study([10] if args.smoke else [30, 60, 120], repeat)
+    peers_oring = felupe_study([12] if args.smoke else [12, 24, 48], repeat) if args.peers else []
     growth = slope(hertz, "ndof", "solve_step_s")
     data = {"hertz_plane": hertz, "hertz_time_growth_exponent": growth, "cube_ipopt_vs_newton": cube,
             "hertz_neohookean_ipopt_vs_newton": hertz_newton,
-            "hertz_sphere": sphere, "volumetric": volumetric, "two_bodies": two_bodies, "smoke": args.smoke, "repeat": repeat, "total_s": time.time() - start}
+            "hertz_sphere": sphere, "volumetric": volumetric, "two_bodies": two_bodies, "felupe_oring": peers_oring, "smoke": args.smoke, "repeat": repeat, "total_s": time.time() - start}
     out = os.path.join(ROOT, OUT)
     os.makedirs(out, exist_ok=True)
     with open(os.path.join(out, "bench.json"), "w") as f:
@@ -327,11 +376,13 @@ def main():
     t2 = markdown.table(("n", "DOFs", "IPOPT it.", "IPOPT solve (s)", "Newton it.", "Newton solve (s)", "IPOPT / Newton"),
                         [(r["n"], r["ndof"], r["ipopt_iterations"], f"{r['ipopt_solve_s']:.1f}", r["newton_iterations"],
                           f"{r['newton_solve_s']:.1f}", f"{r['ipopt_over_newton']:.2f}") for r in cube])
-    t2b = markdown.table(("h", "DOFs", "IPOPT it.", "IPOPT solve (s)", "Newton it.", "Newton solve (s)", "IPOPT / Newton",
-                          "U difference, rel. to max U", "a err"),
-                         [(r["level"], r["ndof"], r["ipopt_iterations"], f"{r['ipopt_solve_s']:.1f}", r["newton_iterations"],
-                           f"{r['newton_solve_s']:.1f}", f"{r['ipopt_over_newton']:.2f}", f"{r['rel_difference']:.1e}",
-                           f"{r['a_error']:.1e}") for r in hertz_newton])
+    t2b = markdown.table(("h", "DOFs", "contact solve", "it.", "solve (s)", "Newton it.", "Newton solve (s)", "contact solve / Newton",
+                          "U difference, rel. to max U", "a err", "IPOPT, whole problem: it.", "solve (s)", "/ Newton"),
+                         [(r["level"], r["ndof"], r["contact_solve"], r["ipopt_iterations"], f"{r['ipopt_solve_s']:.2f}", r["newton_iterations"],
+                           f"{r['newton_solve_s']:.2f}", f"{r['ipopt_over_newton']:.2f}", f"{r['rel_difference']:.1e}",
+                           f"{r['a_error']:.1e}", r.get("full_iterations", "-"),
+                           f"{r['full_solve_s']:.2f}" if "full_solve_s" in r else "-",
+                           f"{r['full_over_newton']:.2f}" if "full_over_newton" in r else "-") for r in hertz_newton])
     t3 = markdown.table(("h", "DOFs", "IPOPT it.", "wall (s)", "solve (s)", "peak RSS (MB)", "a err", "p_max err"),
                         [(r["level"], r["ndof"], r["iterations"], f"{r['wall_s']:.1f}", f"{r['solve_step_s']:.1f}",
                           f"{r['peak_rss_mb']:.0f}", f"{r['a_error']:.1e}", f"{r['p_max_error']:.1e}") for r in sphere])
@@ -344,18 +395,33 @@ def main():
                           r["updated_iterations"], f"{r['updated_resolves']:.0f}", f"{r['updated_solve_s']:.2f}", r["rigid_ndof"],
                           r["rigid_iterations"], f"{r['rigid_solve_s']:.2f}", f"{r['pair_over_rigid_per_dof']:.2f}")
                          for r in two_bodies])
+    def felupe_cells(r, f):
+        if f + "_solve_s" not in r:
+            return ("-",) * 5
+        return (r[f + "_ndof"], r[f + "_iterations"], f"{r[f + '_solve_s']:.2f}", f"{r[f + '_wall_s']:.2f}", f"{r[f + '_force']:.5f}")
+    t6 = markdown.table(("h", "DOFs", "it.", "solve (s)", "wall (s)", "F/Lindley at c = 0.3", "FElupe P1: DOFs", "Newton it.",
+                         "solve (s)", "wall (s)", "F/Lindley", "Q1/P0: DOFs", "Newton it.", "solve (s)", "wall (s)", "F/Lindley",
+                         "ours / P1, solve", "ours / Q1/P0, solve"),
+                        [(r["level"], r["ndof"], r["iterations"], f"{r['solve_s']:.2f}", f"{r['wall_s']:.2f}", f"{r['force']:.5f}")
+                         + felupe_cells(r, "p1") + felupe_cells(r, "mixed")
+                         + (f"{r['solve_s'] / r['p1_solve_s']:.2f}" if "p1_solve_s" in r else "-",
+                            f"{r['solve_s'] / r['mixed_solve_s']:.2f}" if "mixed_solve_s" in r else "-")
+                         for r in peers_oring]) if peers_oring else "(make bench PEERS=1)"
     text = (f"Hertz plane (P1, linear), solve time growing like DOFs^{growth:.2f}:\n\n{t1}\n\n"
             f"Hertz plane: the condensed solve (default), the full KKT path (-condense no) and "
             f"DOLFINx's SNES-VI on the same mesh (make bench PEERS=1)\n\n{t1b}\n\n"
             f"3D Neo-Hookean cube, no contact: IPOPT against plain Newton\n\n{t2}\n\n"
-            f"Neo-Hookean Hertz plane: IPOPT against plain Newton given the contact set IPOPT found\n\n{t2b}\n\n"
+            f"Neo-Hookean Hertz plane: the contact solve (the condensed SQP by default; IPOPT on the whole problem with "
+            f"-condense no) against plain Newton given the contact set it found\n\n{t2b}\n\n"
             f"3D Hertz sphere\n\n{t3}\n\n"
             f"Volumetric treatment at nu = 0.499 (error: O-ring, of computed / Lindley at c = 0.2 against the "
             f"mesh-converged {ORING_CONVERGED}; Hertz, of a against Hertz)\n\n{t4}\n\n"
-            f"Two elastic cylinders (small sliding; updated pairing) against one disc on a rigid cylinder, same h\n\n{t5}")
+            f"Two elastic cylinders (small sliding; updated pairing) against one disc on a rigid cylinder, same h\n\n{t5}\n\n"
+            f"O-ring between plates (15 steps to c = 0.3, nu = 0.499): ours (nodal form) against FElupe's P1 and Q1/P0 "
+            f"(bench/felupe_oring.py); converged F/Lindley at c = 0.3: 1.3260\n\n{t6}")
     print("\n" + text)
     markdown.write(os.path.join(out, "BENCH.md"), "Benchmark timings", text)
-    return 0 if hertz and cube and hertz_newton and sphere and volumetric and two_bodies else 1
+    return 0 if hertz and cube and hertz_newton and sphere and volumetric and two_bodies and (peers_oring or not args.peers) else 1
 
 
 if __name__ == "__main__":

@@ -36,9 +36,11 @@ dpkg -s libmetis-dev >/dev/null 2>&1 || missing+=(libmetis-dev)
 # the report's figures: matplotlib for Debian's python3 (the Makefile runs /usr/bin/python3)
 dpkg -s python3-matplotlib >/dev/null 2>&1 || missing+=(python3-matplotlib)
 
-# --peers (make bench PEERS=1): DOLFINx, for bench/dolfinx_hertz.py
+# --peers (make bench PEERS=1): DOLFINx for bench/dolfinx_hertz.py, and python3-venv for the venv in
+# which bench/felupe_oring.py installs FElupe with pip
 if [ "${1:-}" = "--peers" ]; then
   dpkg -s python3-dolfinx >/dev/null 2>&1 || missing+=(python3-dolfinx)
+  dpkg -s python3-venv >/dev/null 2>&1 || missing+=(python3-venv)
 fi
 
 if [ ${#missing[@]} -eq 0 ]; then
