@@ -1,7 +1,7 @@
 // schur_condensation: the elastic problem condensed onto the contact dofs, by MUMPS's own Schur
 // complement (ICNTL(19)) and its reduction/expansion of right-hand sides (ICNTL(26)). Built by
-// `make` with ff-c++ against Debian's sequential MUMPS (libmumps-seq-dev); used by
-// include/solve/condensed_solve.idp.
+// `make` with ff-c++ against Debian's sequential MUMPS (libmumps-seq-dev) and METIS (libmetis-dev);
+// used by include/solve/condensed_solve.idp.
 //
 // Why a plugin: FreeFEM's SchurComplement (plugin Schur-Complement) solves one right-hand side per
 // Schur column, which at 941k dofs costs 0.54 s a column, 722 columns for the Hertz plane; MUMPS
@@ -16,6 +16,7 @@
 //   schurFactor(K, fixedMask, schurDofs, S): factorizes K with the dofs where fixedMask != 0 removed
 //     (identity rows: the caller puts their values in the right-hand side) and the dofs schurDofs
 //     kept as the Schur block, which it returns dense in S. Returns MUMPS's INFOG(1) (0: success).
+//     Called again with the same pattern (a tangent at a new state), it keeps MUMPS's analysis.
 //   schurReduce(b, g): g = the reduced right-hand side of b.
 //   schurExpand(b, Uc, U): U = the whole solution for the right-hand side b with U(schurDofs) = Uc.
 //   schurStatistics(stats): the last factorization's ordering, analysis and factorization times (s),
