@@ -80,23 +80,28 @@ def solve_seconds(summary):
     return sum(st["time_s"] for st in summary["steps"])
 
 
-def dolfinx_run(h, repeat):
-    """bench/dolfinx_hertz.py (DOLFINx SNES-VI, Debian's python3-dolfinx) on the same mesh: its
-    RESULT with the median total wall time, or None."""
+def peer_runs(command, repeat, wall_key):
+    """A peer script (its last output line "RESULT {json}") run `repeat` times with one OpenMP thread:
+    the run of median wall time, its wall time the median, or None after printing the failure."""
     runs = []
     for _ in range(repeat):
-        proc = subprocess.run(["/usr/bin/python3", "bench/dolfinx_hertz.py", "--h", repr(h)], cwd=ROOT,
-                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+        proc = subprocess.run(command, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                               env=dict(os.environ, OMP_NUM_THREADS="1"))
         m = re.search(r"^RESULT (.*)$", proc.stdout, re.M)
         if proc.returncode != 0 or not m:
-            print("dolfinx: FAILED\n" + proc.stdout[-500:], flush=True)
+            print(f"{' '.join(command[1:])}: FAILED\n" + proc.stdout[-500:], flush=True)
             return None
         runs.append(json.loads(m.group(1)))
-    walls = [r["total_wall_s"] for r in runs]
-    best = runs[walls.index(statistics.median_low(walls))]
-    best["total_wall_s"] = statistics.median(walls)
+    walls = [r[wall_key] for r in runs]
+    best = dict(runs[walls.index(statistics.median_low(walls))])
+    best[wall_key] = statistics.median(walls)
+    best["solve_s"] = statistics.median(r["solve_s"] for r in runs)
     return best
+
+
+def dolfinx_run(h, repeat):
+    """bench/dolfinx_hertz.py (DOLFINx SNES-VI, Debian's python3-dolfinx) on the same mesh."""
+    return peer_runs(["/usr/bin/python3", "bench/dolfinx_hertz.py", "--h", repr(h)], repeat, "total_wall_s")
 
 
 def hertz_study(levels, repeat, full_path_levels, peers):
@@ -295,23 +300,13 @@ def felupe_study(divisions, repeat):
         row = {"level": f"R/{k}", "ndof": s["ndof"], "iterations": s["ipopt_iterations"], "solve_s": solve_seconds(s),
                "wall_s": run[1], "force": s["results"]["force_c0.3"]["computed"] / s["results"]["force_c0.3"]["reference"]}
         for formulation in ("p1", "mixed"):
-            results = []
-            for _ in range(repeat):
-                proc = subprocess.run(["/usr/bin/python3", "bench/felupe_oring.py", "--h", f"R/{k}", "--formulation", formulation],
-                                      cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                                      env=dict(os.environ, OMP_NUM_THREADS="1"))
-                m = re.search(r"^RESULT (.*)$", proc.stdout, re.M)
-                if proc.returncode != 0 or not m:
-                    print(f"felupe {formulation} R/{k}: FAILED\n" + proc.stdout[-500:], flush=True)
-                    break
-                results.append(json.loads(m.group(1)))
-            if len(results) == repeat:
-                walls = [r["wall_s"] for r in results]
-                best = results[walls.index(statistics.median_low(walls))]
+            best = peer_runs(["/usr/bin/python3", "bench/felupe_oring.py", "--h", f"R/{k}", "--formulation", formulation],
+                             repeat, "wall_s")
+            if best:
+                force = best["results"]["force_c0.3"]
                 row.update({f"{formulation}_ndof": best["ndof"], f"{formulation}_iterations": best["newton_iterations"],
-                            f"{formulation}_solve_s": statistics.median(r["solve_s"] for r in results),
-                            f"{formulation}_wall_s": statistics.median(walls),
-                            f"{formulation}_force": best["results"]["force_c0.3"]["computed"] / best["results"]["force_c0.3"]["reference"]})
+                            f"{formulation}_solve_s": best["solve_s"], f"{formulation}_wall_s": best["wall_s"],
+                            f"{formulation}_force": force["computed"] / force["reference"]})
         rows.append(row)
         print(f"oring plates R/{k}: ours {row['ndof']} dofs {row['solve_s']:.2f} s; FElupe P1 {row.get('p1_solve_s', float('nan')):.2f} s, "
               f"mixed {row.get('mixed_solve_s', float('nan')):.2f} s", flush=True)
