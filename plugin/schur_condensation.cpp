@@ -81,39 +81,60 @@ double clockNow() {
 // components at one node) are one vertex of its graph.
 void nestedDissectionOrder(Condensation &c) {
   long n = c.n;
-  std::vector<std::vector<int>> neighbours(n);
+  // the symmetric pattern with its diagonal (closed neighbourhoods) in compressed rows, each row
+  // sorted and without repeats (built by counting: a vector per row took ~2 s at 949k dofs)
+  std::vector<long> start(n + 1, 0);
   for (size_t k = 0; k < c.rows.size(); k++) {
     int i = c.rows[k] - 1, j = c.columns[k] - 1;
-    neighbours[i].push_back(j);
-    if (i != j) neighbours[j].push_back(i);
+    if (i != j) { start[i + 1]++; start[j + 1]++; }
   }
-  for (long i = 0; i < n; i++) {   // closed neighbourhoods, sorted
-    neighbours[i].push_back(int(i));
-    std::sort(neighbours[i].begin(), neighbours[i].end());
-    neighbours[i].erase(std::unique(neighbours[i].begin(), neighbours[i].end()), neighbours[i].end());
+  for (long i = 0; i < n; i++) start[i + 1] += start[i] + 1;   // + the diagonal
+  std::vector<int> column(start[n]);
+  std::vector<long> fill(start.begin(), start.end() - 1);
+  for (long i = 0; i < n; i++) column[fill[i]++] = int(i);
+  for (size_t k = 0; k < c.rows.size(); k++) {
+    int i = c.rows[k] - 1, j = c.columns[k] - 1;
+    if (i != j) { column[fill[i]++] = j; column[fill[j]++] = i; }
   }
+  std::vector<long> rowFirst(n + 1, 0);   // after sorting and removing repeats, in place
+  long kept = 0;
+  for (long i = 0; i < n; i++) {
+    std::sort(column.begin() + start[i], column.begin() + start[i + 1]);
+    long end = std::unique(column.begin() + start[i], column.begin() + start[i + 1]) - column.begin();
+    rowFirst[i] = kept;
+    for (long k = start[i]; k < end; k++) column[kept++] = column[k];
+  }
+  rowFirst[n] = kept;
+  auto sameRow = [&](long i, long j) {
+    return rowFirst[i + 1] - rowFirst[i] == rowFirst[j + 1] - rowFirst[j]
+           && std::equal(column.begin() + rowFirst[i], column.begin() + rowFirst[i + 1], column.begin() + rowFirst[j]);
+  };
   std::vector<int> node(n);   // variable -> node
   std::vector<long> first;    // node -> its first variable
   for (long i = 0; i < n; i++) {
-    if (i > 0 && neighbours[i] == neighbours[i - 1]) node[i] = node[i - 1];
+    if (i > 0 && sameRow(i, i - 1)) node[i] = node[i - 1];
     else { node[i] = int(first.size()); first.push_back(i); }
   }
   long nodes = first.size();
   std::vector<idx_t> xadj(nodes + 1, 0), adjncy;
-  adjncy.reserve(c.rows.size());
+  adjncy.reserve(kept/2);
   std::vector<long> seen(nodes, -1);
   for (long v = 0; v < nodes; v++) {
-    for (int j : neighbours[first[v]]) {
-      int w = node[j];
+    long i = first[v];
+    for (long k = rowFirst[i]; k < rowFirst[i + 1]; k++) {
+      int w = node[column[k]];
       if (w != v && seen[w] != v) { seen[w] = v; adjncy.push_back(w); }
     }
     xadj[v + 1] = adjncy.size();
   }
-  neighbours.clear();
+  std::vector<int>().swap(column);
   idx_t vertices = idx_t(nodes);
   std::vector<idx_t> permutation(nodes), inverse(nodes);
   idx_t options[METIS_NOPTIONS];
   METIS_SetDefaultOptions(options);
+  // one refinement iteration per level instead of 10: the same fill (9.14e7 against 9.19e7 entries at
+  // 949k dofs), METIS 2.3 s against 2.6-3.2 s
+  options[METIS_OPTION_NITER] = 1;
   METIS_NodeND(&vertices, xadj.data(), adjncy.data(), 0, options, permutation.data(), inverse.data());
   std::vector<char> inSchur(n, 0);
   for (int v : c.schurList) inSchur[v - 1] = 1;
