@@ -36,10 +36,12 @@ A_SPHERE = 0.1005577     # of the default hertz_sphere (m)
 OUT = "results/bench"      # --out
 
 
-def timed_run(script, args, out_dir):
-    """Runs FreeFem++ under GNU time: (summary, wall seconds, peak RSS in MB, output)."""
+def timed_run(script, args, out_dir, one_thread=False):
+    """Runs FreeFem++ under GNU time: (summary, wall seconds, peak RSS in MB, output). one_thread: one
+    OpenBLAS thread (OMP_NUM_THREADS=1), as the peers run, for the studies compared with them."""
     command = ["/usr/bin/time", "-f", "BENCH %e %M", "FreeFem++", "-nw", script] + args + ["-out", out_dir]
-    proc = subprocess.run(command, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    env = dict(os.environ, OMP_NUM_THREADS="1") if one_thread else None
+    proc = subprocess.run(command, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
     m = re.findall(r"BENCH ([\d.]+) (\d+)", proc.stdout)
     wall, rss = (float(m[-1][0]), int(m[-1][1]) / 1024) if m else (float("nan"), float("nan"))
     return read_summary(out_dir), wall, rss, proc.stdout
@@ -59,16 +61,16 @@ def ipopt_cpu(out_dir):
     return internal, callbacks
 
 
-def median_runs(repeat, script, args, out_dir):
-    runs = [timed_run(script, args, out_dir) for _ in range(repeat)]
+def median_runs(repeat, script, args, out_dir, one_thread=False):
+    runs = [timed_run(script, args, out_dir, one_thread) for _ in range(repeat)]
     walls = [r[1] for r in runs]
     best = runs[walls.index(statistics.median_low(walls))]
     return best[0], statistics.median(walls), max(r[2] for r in runs), best[3]
 
 
-def measured(label, repeat, script, args, out_dir):
+def measured(label, repeat, script, args, out_dir, one_thread=False):
     """median_runs, or None after printing the failure with the end of the run's output."""
-    s, wall, rss, output = median_runs(repeat, script, args, out_dir)
+    s, wall, rss, output = median_runs(repeat, script, args, out_dir, one_thread)
     if s is None:
         print(f"{label}: FAILED\n" + output[-500:], flush=True)
         return None
@@ -106,13 +108,14 @@ def dolfinx_run(h, repeat):
 
 def hertz_study(levels, repeat, full_path_levels, peers):
     """Hertz plane: the condensed solve (the default), the full KKT path (-condense no) up to
-    full_path_levels, and with peers the DOLFINx SNES-VI solve of the same mesh."""
+    full_path_levels, and with peers the DOLFINx SNES-VI solve of the same mesh (then ours too with one
+    OpenBLAS thread, as the peer runs)."""
     rows = []
     for level in levels:
         h = A_HERTZ / level
         reps = repeat if level <= 160 else 1
         out_dir = f"{OUT}/hertz_a{level}"
-        run = measured(f"hertz a/{level}", reps, "benchmarks/hertz_plane.edp", ["-h", repr(h)], out_dir)
+        run = measured(f"hertz a/{level}", reps, "benchmarks/hertz_plane.edp", ["-h", repr(h)], out_dir, peers)
         if run is None:
             continue
         s, wall, rss, output = run
@@ -135,7 +138,7 @@ def hertz_study(levels, repeat, full_path_levels, peers):
                "runs": reps}
         if level <= full_path_levels:
             full = measured(f"hertz a/{level} full KKT path", reps, "benchmarks/hertz_plane.edp",
-                            ["-h", repr(h), "-condense", "no"], f"{OUT}/hertz_a{level}_full")
+                            ["-h", repr(h), "-condense", "no"], f"{OUT}/hertz_a{level}_full", peers)
             if full:
                 row.update({"full_iterations": full[0]["ipopt_iterations"], "full_solve_s": solve_seconds(full[0]),
                             "full_wall_s": full[1], "full_l2_error": full[0]["results"]["pressure_l2_rel_error"]["computed"]})
@@ -293,7 +296,7 @@ def felupe_study(divisions, repeat):
     for k in divisions:
         h = ORING_R / k
         run = measured(f"oring plates R/{k}", repeat, "benchmarks/oring.edp", ["-case", "plates", "-h", repr(h)],
-                       f"{OUT}/peers_oring_R{k}")
+                       f"{OUT}/peers_oring_R{k}", one_thread=True)
         if run is None:
             continue
         s = run[0]
@@ -412,11 +415,11 @@ def main():
                          for r in peers_oring]) if peers_oring else "(make bench PEERS=1)"
     text = (f"Hertz plane (P1, linear), solve time growing like DOFs^{growth:.2f}:\n\n{t1}\n\n"
             f"Hertz plane: the condensed solve (default), the full KKT path (-condense no) and "
-            f"DOLFINx's SNES-VI on the same mesh (make bench PEERS=1)\n\n{t1b}\n\n"
+            f"DOLFINx's SNES-VI on the same mesh (make bench PEERS=1; both with one OpenBLAS thread)\n\n{t1b}\n\n"
             f"3D Neo-Hookean cube, no contact: IPOPT against plain Newton\n\n{t2}\n\n"
             f"Neo-Hookean Hertz plane: the contact solve (the condensed SQP by default; IPOPT on the whole problem with "
             f"-condense no) against plain Newton given the contact set it found\n\n{t2b}\n\n"
-            f"3D Hertz sphere\n\n{t3}\n\n"
+            f"3D Hertz sphere (two OpenBLAS threads: the factorization's dense fronts use both cores)\n\n{t3}\n\n"
             f"Volumetric treatment at nu = 0.499 (error: O-ring, of computed / Lindley at c = 0.2 against the "
             f"mesh-converged {ORING_CONVERGED}; Hertz, of a against Hertz)\n\n{t4}\n\n"
             f"Two elastic cylinders (small sliding; updated pairing) against one disc on a rigid cylinder, same h\n\n{t5}\n\n"
