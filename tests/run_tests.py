@@ -174,7 +174,7 @@ def test_cube_second_parameter_set():
 def test_cube_on_foundation():
     """The block resting on the rigid plane y = 0 (contact instead of u_y = 0) has the same
     exact solution; the contact force from IPOPT's multipliers must carry the whole load
-    (pressure x top area) and nothing may sink into the plane."""
+    (pressure x top area), the forces must balance and nothing may sink into the plane."""
     for material in ("mooney", "neohookean"):
         for dim, n in (("2", "6"), ("3", "3")):
             label = f"cube {dim}D {material} on foundation"
@@ -186,6 +186,10 @@ def test_cube_on_foundation():
                   f"{f['computed']:.12g} vs {f['reference']:.12g}, rel={f['rel_error']:.1e}")
             p = s["results"]["max_penetration"]["computed"]
             check(f"{label}: penetration <= 1e-10 x block height", p <= 1e-10, f"{p:.1e}")
+            # every component of applied + contact + reactions sums to zero (a sum over a stepped
+            # slice that dropped the last node's z made this 5e-3 in 3D while the contact force held)
+            b = s["results"]["force_balance_rel_error"]["computed"]
+            check(f"{label}: force balance <= 1e-8", b <= 1e-8, f"{b:.1e}")
 
 
 def test_output_contract():
@@ -306,6 +310,22 @@ def test_condensed_path():
         for q in ("force_c0.1", "force_c0.2", "force_c0.3"):
             c, f = oring["auto"]["results"][q]["computed"], oring["no"]["results"][q]["computed"]
             check(f"condensed path O-ring plates: {q} = the full path's to 1e-9", abs(c - f) <= 1e-9 * abs(f), f"{c:.13g} vs {f:.13g}")
+    # R/36: the compressed ring's tangent turns indefinite from c = 0.22 on; the SQP shifts it on its
+    # diagonal and must finish every step itself (no hand-over to the whole problem) at the full
+    # path's forces to 1e-9 (measured: 3e-11; both at -tol 1e-10)
+    h36 = repr(0.52 / 36)
+    o = out("condensed path O-ring plates R/36 -tol 1e-10 -condense auto")
+    code, output, _ = run_driver("benchmarks/oring.edp", ["-case", "plates", "-h", h36, "-tol", "1e-10"], o)
+    shifted = read_summary(o) if code == 0 else None
+    check("condensed path O-ring plates R/36: the SQP shifted an indefinite tangent, and no step fell back",
+          shifted is not None and "indefinite tangent: shifted" in output and "condensed SQP stopped" not in output,
+          f"exit {code}; {[l for l in output.splitlines() if 'shifted' in l or 'stopped' in l][:3]}")
+    full = run_summary("condensed path O-ring plates R/36 -tol 1e-10 -condense no", "benchmarks/oring.edp",
+                       ["-case", "plates", "-h", h36, "-tol", "1e-10", "-condense", "no"])
+    if shifted and full:
+        for q in ("force_c0.1", "force_c0.2", "force_c0.3"):
+            c, f = shifted["results"][q]["computed"], full["results"][q]["computed"]
+            check(f"condensed path O-ring plates R/36: {q} = the full path's to 1e-9", abs(c - f) <= 1e-9 * abs(f), f"{c:.13g} vs {f:.13g}")
     # -condense yes where the condensation does not apply: known once the problem is set up, so the
     # driver's header line comes first; then one error line naming -condense, exit 2, no summary.json
     for script, args in (("benchmarks/cube.edp", []), ("benchmarks/hertz_circle.edp", ["-constraint", "exact"]),
