@@ -229,7 +229,7 @@ static long schurFactor(Matrice_Creuse<double> *const &pK, KN<double> *const &pF
     c.schur.assign(nSchur*nSchur, 0.);
     c.rhs.assign(n, 0.);
     c.reduced.assign(nSchur, 0.);
-    nestedDissectionOrder(c);
+    if (!samePattern) nestedDissectionOrder(c);   // (same pattern, new values that need LDL^T: same order)
     t1 = clockNow();
     // Cholesky (sym = 1) when K_ii is positive definite: 5.5 s against 8.7 s for LDL^T with pivoting
     // (sym = 2) on the 67k-dof 3D sphere; LDL^T when it is not (a body left free by its rows)

@@ -34,14 +34,15 @@ import markdown  # noqa: E402
 A_HERTZ = 0.0550867877   # Hertz half-width of the default hertz_plane (m)
 A_SPHERE = 0.1005577     # of the default hertz_sphere (m)
 OUT = "results/bench"      # --out
+ONE_THREAD = dict(os.environ, OMP_NUM_THREADS="1")   # one OpenBLAS/OpenMP thread: how the peers run
 
 
 def timed_run(script, args, out_dir, one_thread=False):
     """Runs FreeFem++ under GNU time: (summary, wall seconds, peak RSS in MB, output). one_thread: one
     OpenBLAS thread (OMP_NUM_THREADS=1), as the peers run, for the studies compared with them."""
     command = ["/usr/bin/time", "-f", "BENCH %e %M", "FreeFem++", "-nw", script] + args + ["-out", out_dir]
-    env = dict(os.environ, OMP_NUM_THREADS="1") if one_thread else None
-    proc = subprocess.run(command, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
+    proc = subprocess.run(command, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                          env=ONE_THREAD if one_thread else None)
     m = re.findall(r"BENCH ([\d.]+) (\d+)", proc.stdout)
     wall, rss = (float(m[-1][0]), int(m[-1][1]) / 1024) if m else (float("nan"), float("nan"))
     return read_summary(out_dir), wall, rss, proc.stdout
@@ -88,7 +89,7 @@ def peer_runs(command, repeat, wall_key):
     runs = []
     for _ in range(repeat):
         proc = subprocess.run(command, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                              env=dict(os.environ, OMP_NUM_THREADS="1"))
+                              env=ONE_THREAD)
         m = re.search(r"^RESULT (.*)$", proc.stdout, re.M)
         if proc.returncode != 0 or not m:
             print(f"{' '.join(command[1:])}: FAILED\n" + proc.stdout[-500:], flush=True)

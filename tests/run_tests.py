@@ -256,6 +256,13 @@ def hertz_case(label, script, args, bound_a=verdicts.bound("hertz_plane", "a"),
     return s
 
 
+def same_plate_forces(label, condensed, full):
+    """The O-ring plate forces at c = 0.1, 0.2, 0.3 of a condensed run equal the full path's to 1e-9."""
+    for q in ("force_c0.1", "force_c0.2", "force_c0.3"):
+        c, f = condensed["results"][q]["computed"], full["results"][q]["computed"]
+        check(f"{label}: {q} = the full path's to 1e-9", abs(c - f) <= 1e-9 * abs(f), f"{c:.13g} vs {f:.13g}")
+
+
 def test_condensed_path():
     """The condensed solve (include/solve/condensed_solve.idp) against the full KKT path on the same
     problems: the interior dofs are eliminated exactly, so both paths find the same minimiser up to
@@ -307,9 +314,7 @@ def test_condensed_path():
     if all(oring.values()):
         check("condensed path O-ring plates: the condensed SQP ran (condensed dofs reported)",
               "condensed_dofs" in oring["auto"]["results"] and "condensed_dofs" not in oring["no"]["results"])
-        for q in ("force_c0.1", "force_c0.2", "force_c0.3"):
-            c, f = oring["auto"]["results"][q]["computed"], oring["no"]["results"][q]["computed"]
-            check(f"condensed path O-ring plates: {q} = the full path's to 1e-9", abs(c - f) <= 1e-9 * abs(f), f"{c:.13g} vs {f:.13g}")
+        same_plate_forces("condensed path O-ring plates", oring["auto"], oring["no"])
     # R/36: the compressed ring's tangent turns indefinite from c = 0.22 on; the SQP shifts it on its
     # diagonal and must finish every step itself (no hand-over to the whole problem) at the full
     # path's forces to 1e-9 (measured: 3e-11; both at -tol 1e-10)
@@ -323,9 +328,7 @@ def test_condensed_path():
     full = run_summary("condensed path O-ring plates R/36 -tol 1e-10 -condense no", "benchmarks/oring.edp",
                        ["-case", "plates", "-h", h36, "-tol", "1e-10", "-condense", "no"])
     if shifted and full:
-        for q in ("force_c0.1", "force_c0.2", "force_c0.3"):
-            c, f = shifted["results"][q]["computed"], full["results"][q]["computed"]
-            check(f"condensed path O-ring plates R/36: {q} = the full path's to 1e-9", abs(c - f) <= 1e-9 * abs(f), f"{c:.13g} vs {f:.13g}")
+        same_plate_forces("condensed path O-ring plates R/36", shifted, full)
     # -condense yes where the condensation does not apply: known once the problem is set up, so the
     # driver's header line comes first; then one error line naming -condense, exit 2, no summary.json
     for script, args in (("benchmarks/cube.edp", []), ("benchmarks/hertz_circle.edp", ["-constraint", "exact"]),
