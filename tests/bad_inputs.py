@@ -56,6 +56,7 @@ CASES = [
     (SPHERE, ["-mesh", "{tmp}/disc2d.msh"], "-mesh"),
     (SPHERE, ["-axisymmetric", "2"], "-axisymmetric"),
     (SPHERE, ["-axisymmetric", "1", "-mesh", "{tmp}/disc2d.msh"], "-mesh"),
+    (SPHERE, ["-candidates", "-0.1"], "-candidates"),
     (CYLINDERS, ["-nu1", "0.5"], "-nu1"),
     (CYLINDERS, ["-E2", "0"], "-E2"),
     (CYLINDERS, ["-R2", "-1"], "-R2"),

@@ -1004,6 +1004,15 @@ def test_axisymmetric_sphere():
     force from the multipliers equal to the load f pi R^2 per full revolution to 1e-8, force balance
     and penetration as for every Hertz run."""
     hertz_case("hertz sphere axisymmetric", "benchmarks/hertz_sphere.edp", ["-axisymmetric", "1"])
+    # candidates within 0.09 < a = 0.1006: the contact zone reaches their edge, which the report
+    # must refuse (a fit on a truncated contact zone would be a silent wrong answer)
+    out = os.path.join(TMP, "sphere_few_candidates")
+    code, output, _ = run_driver("benchmarks/hertz_sphere.edp", ["-axisymmetric", "1", "-candidates", "0.09"], out)
+    last = output.strip().splitlines()[-1] if output.strip() else ""
+    summary = read_summary(out)
+    check("hertz sphere axisymmetric -candidates 0.09: refused after the solve, naming -candidates",
+          code != 0 and last.startswith("error:") and "-candidates" in last
+          and summary is not None and summary.get("failure"), f"exit {code}: {last}")
 
 
 def test_oring_torus():
