@@ -41,7 +41,7 @@ sweep: deps
 	$(PYTHON) scripts/sweep.py --n $(N)
 
 # Debian's packages, then the suite's plugins: plugin/contact_runtime.cpp, which freefem++.pref loads,
-# and plugin/schur_condensation.cpp, which the condensed solve loads
+# plugin/schur_condensation.cpp, which the condensed solve loads, and plugin/isotropic_stiffness.cpp
 # a folder of your own for your own problem: `make workspace DIR=~/my_contact` (docs/writing_your_own_problem.md)
 workspace: deps
 	@test -n "$(DIR)" || { echo "error: give the folder: make workspace DIR=<folder>"; exit 2; }
@@ -49,7 +49,7 @@ workspace: deps
 
 deps:
 	@bash scripts/install_deps.sh
-	@$(MAKE) -s --no-print-directory plugin/contact_runtime.so plugin/schur_condensation.so
+	@$(MAKE) -s --no-print-directory plugin/contact_runtime.so plugin/schur_condensation.so plugin/isotropic_stiffness.so
 
 plugin/contact_runtime.so: plugin/contact_runtime.cpp
 	@cd plugin && ff-c++ contact_runtime.cpp > build.log 2>&1 || { cat build.log; exit 1; }
@@ -60,5 +60,10 @@ plugin/schur_condensation.so: plugin/schur_condensation.cpp
 	@cd plugin && ff-c++ schur_condensation.cpp -I/usr/include/mumps_seq -ldmumps_seq -lmetis > build_schur.log 2>&1 || { cat build_schur.log; exit 1; }
 	@rm -f plugin/schur_condensation.o
 
+# linear elasticity's stiffness on P1 tetrahedra (include/body/elastic_energy.idp)
+plugin/isotropic_stiffness.so: plugin/isotropic_stiffness.cpp
+	@cd plugin && ff-c++ isotropic_stiffness.cpp > build_stiffness.log 2>&1 || { cat build_stiffness.log; exit 1; }
+	@rm -f plugin/isotropic_stiffness.o
+
 clean:
-	rm -rf results plugin/contact_runtime.so plugin/schur_condensation.so plugin/build.log plugin/build_schur.log
+	rm -rf results plugin/contact_runtime.so plugin/schur_condensation.so plugin/isotropic_stiffness.so plugin/build.log plugin/build_schur.log plugin/build_stiffness.log

@@ -112,9 +112,10 @@ def test_new_law_recipe():
 
 def test_linear_stiffness():
     """Linear elasticity's Hessian from its Lame form against the generic tangent assembly
-    (stiffness_check.edp), P1 and P2 in 2D, P1 in 3D and axisymmetric: the same bilinear form,
-    so equal to rounding (1e-12)."""
-    check_script_cases("stiffness_check", 4)
+    (stiffness_check.edp), P1 and P2 in 2D, P1 in 3D and axisymmetric, whole and as the lower
+    triangle (plugin/isotropic_stiffness.cpp on P1 tetrahedra, also with moduli varying per
+    element against the varf): the same bilinear form, so equal to rounding (1e-12)."""
+    check_script_cases("stiffness_check", 5)
 
 
 def test_obstacle_derivatives():
