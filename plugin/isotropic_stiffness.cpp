@@ -2,8 +2,8 @@
 // tetrahedra, lower triangle, assembled in C++ (built by `make` with ff-c++, loaded by
 // include/body/elastic_energy.idp). It is the matrix of the varf vIsotropicStiffness,
 //   int lambda div(w) div(v) + 2 mu eps(w) : eps(v),
-// whose FreeFEM assembly took 4.7 s of the 3D Hertz sphere's 60 s at 201k dofs (391k tetrahedra)
-// against 0.4 s here: the gradients of P1 are constant on an element, so each 12 x 12 element
+// whose FreeFEM assembly took 5.3 s of the 3D Hertz sphere's 60 s at 201k dofs (391k tetrahedra)
+// against 0.9 s here: the gradients of P1 are constant on an element, so each 12 x 12 element
 // matrix is a few products, and the pattern is known from the vertices' neighbours.
 //   isotropicStiffnessLower(Th, lambda, mu, K): Th a mesh3, lambda and mu one value per element
 //     (P0 arrays), K receives the lower triangle (FreeFEM's sym = 1 form) in the numbering of
