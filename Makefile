@@ -41,7 +41,7 @@ sweep: deps
 	$(PYTHON) scripts/sweep.py --n $(N)
 
 # Debian's packages, then the suite's plugins: plugin/contact_runtime.cpp, which freefem++.pref loads,
-# plugin/schur_condensation.cpp, which the condensed solve loads, and plugin/isotropic_stiffness.cpp
+# plugin/schur_condensation.cpp, which the condensed solve loads, and plugin/fast_assembly.cpp
 # a folder of your own for your own problem: `make workspace DIR=~/my_contact` (docs/writing_your_own_problem.md)
 workspace: deps
 	@test -n "$(DIR)" || { echo "error: give the folder: make workspace DIR=<folder>"; exit 2; }
@@ -49,7 +49,7 @@ workspace: deps
 
 deps:
 	@bash scripts/install_deps.sh
-	@$(MAKE) -s --no-print-directory plugin/contact_runtime.so plugin/schur_condensation.so plugin/isotropic_stiffness.so
+	@$(MAKE) -s --no-print-directory plugin/contact_runtime.so plugin/schur_condensation.so plugin/fast_assembly.so
 
 plugin/contact_runtime.so: plugin/contact_runtime.cpp
 	@cd plugin && ff-c++ contact_runtime.cpp > build.log 2>&1 || { cat build.log; exit 1; }
@@ -61,9 +61,9 @@ plugin/schur_condensation.so: plugin/schur_condensation.cpp
 	@rm -f plugin/schur_condensation.o
 
 # linear elasticity's stiffness on P1 tetrahedra (include/body/elastic_energy.idp)
-plugin/isotropic_stiffness.so: plugin/isotropic_stiffness.cpp
-	@cd plugin && ff-c++ isotropic_stiffness.cpp > build_stiffness.log 2>&1 || { cat build_stiffness.log; exit 1; }
-	@rm -f plugin/isotropic_stiffness.o
+plugin/fast_assembly.so: plugin/fast_assembly.cpp
+	@cd plugin && ff-c++ fast_assembly.cpp > build_fast_assembly.log 2>&1 || { cat build_fast_assembly.log; exit 1; }
+	@rm -f plugin/fast_assembly.o
 
 clean:
-	rm -rf results plugin/contact_runtime.so plugin/schur_condensation.so plugin/isotropic_stiffness.so plugin/build.log plugin/build_schur.log plugin/build_stiffness.log
+	rm -rf results plugin/contact_runtime.so plugin/schur_condensation.so plugin/fast_assembly.so plugin/build.log plugin/build_schur.log plugin/build_fast_assembly.log

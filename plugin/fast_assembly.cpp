@@ -1,0 +1,190 @@
+// fast_assembly: matrices of the suite that FreeFEM's varf and sparse products build slowly,
+// assembled in C++ (built by `make` with ff-c++, loaded by include/body/elastic_energy.idp).
+// Each is the same matrix as the script-level form it replaces, which stays the reference:
+// tests/stiffness_check.edp and tests/fd_volumetric.edp compare them.
+//
+// 1. isotropicStiffnessLower(Th, lambda, mu, K): small-strain isotropic elasticity on P1
+//    tetrahedra, lower triangle: the varf vIsotropicStiffness,
+//      int lambda div(w) div(v) + 2 mu eps(w) : eps(v),
+//    whose FreeFEM assembly took 5.3 s of the 3D Hertz sphere's 60 s at 201k dofs (391k
+//    tetrahedra) against 0.9 s here: the gradients of P1 are constant on an element, so each
+//    12 x 12 element matrix is a few products, and the pattern is known from the vertices'
+//    neighbours. Th a mesh3, lambda and mu one value per element (P0 arrays), K receives the lower
+//    triangle (FreeFEM's sym = 1 form) in the numbering of [P1, P1, P1]: dof 3 v + c for vertex v,
+//    component c. Entry (a i, b j), vertex a component i against vertex b component j, on an
+//    element of volume V whose barycentric coordinates have the gradients g:
+//      V (lambda g_a[i] g_b[j] + mu (g_a[j] g_b[i] + delta_ij g_a . g_b)).
+// 2. nodalCoupling2D(Th, cofactors, nodalVolume, weights, K): adds to K the nodal volumetric
+//    penalty's coupling (P C)^T diag(weights) (P C) in plane strain (include/body/volumetric.idp): row n of
+//    P C is sum over the triangles T of vertex n of |T| / (3 V_n) dJ_T/dU, with
+//    dJ_T/du_(a,i) = sum_j cof(F_T)_ij g_a[j]. FreeFEM's sparse products took 60 ms of the O-ring's
+//    110 ms tangent at 4360 dofs. Th a 2D mesh, cofactors the P0 arrays of cof_11, cof_12, cof_21,
+//    cof_22 one after the other, K a whole matrix in the numbering of [P1, P1] (dof 2 v + c).
+// They return the number of entries stored (1) or added to the pattern (2).
+#include "ff++.hpp"
+#include "AFunction_ext.hpp"
+#include <algorithm>
+#include <vector>
+
+namespace {
+
+long isotropicStiffnessLower(pmesh3 const &pTh, KN<double> *const &pLambda, KN<double> *const &pMu,
+                             Matrice_Creuse<double> *const &pK) {
+  ffassert(pTh);
+  const Mesh3 &Th = *pTh;
+  const KN<double> &lambda = *pLambda, &mu = *pMu;
+  const long nv = Th.nv, nt = Th.nt;
+  ffassert(lambda.N() == nt && mu.N() == nt);
+  // the lower vertex pattern: for vertex a, its neighbours b <= a (itself included), sorted
+  std::vector<long> start(nv + 1, 0);
+  for (long k = 0; k < nt; k++)
+    for (int p = 0; p < 4; p++) {
+      long a = Th(Th[k][p]);
+      for (int q = 0; q < 4; q++)
+        if (Th(Th[k][q]) <= a) start[a + 1]++;
+    }
+  for (long a = 0; a < nv; a++) start[a + 1] += start[a];
+  std::vector<int> neighbour(start[nv]);
+  {
+    std::vector<long> fill(start.begin(), start.end() - 1);
+    for (long k = 0; k < nt; k++)
+      for (int p = 0; p < 4; p++) {
+        long a = Th(Th[k][p]);
+        for (int q = 0; q < 4; q++) {
+          long b = Th(Th[k][q]);
+          if (b <= a) neighbour[fill[a]++] = int(b);
+        }
+      }
+  }
+  // sorted and without repeats, in place; rowStart the compacted rows
+  std::vector<long> rowStart(nv + 1, 0);
+  long pairs = 0;
+  for (long a = 0; a < nv; a++) {
+    std::sort(neighbour.begin() + start[a], neighbour.begin() + start[a + 1]);
+    long first = pairs;
+    for (long m = start[a]; m < start[a + 1]; m++)
+      if (m == start[a] || neighbour[m] != neighbour[m - 1]) neighbour[pairs++] = neighbour[m];
+    rowStart[a] = first;
+  }
+  rowStart[nv] = pairs;
+  // the 3 x 3 blocks of the vertex pairs, summed over the elements
+  std::vector<double> block(9 * pairs, 0.);
+  for (long k = 0; k < nt; k++) {
+    const Tet &K = Th[k];
+    R3 g[4];
+    K.Gradlambda(g);
+    const double volume = K.mesure(), l = lambda[k] * volume, m = mu[k] * volume;
+    for (int p = 0; p < 4; p++) {
+      long a = Th(K[p]);
+      for (int q = 0; q < 4; q++) {
+        long b = Th(K[q]);
+        if (b > a) continue;
+        long where = std::lower_bound(neighbour.begin() + rowStart[a], neighbour.begin() + rowStart[a + 1], int(b))
+                     - neighbour.begin();
+        double *B = &block[9 * where];
+        const double ga[3] = {g[p].x, g[p].y, g[p].z}, gb[3] = {g[q].x, g[q].y, g[q].z};
+        const double dot = ga[0] * gb[0] + ga[1] * gb[1] + ga[2] * gb[2];
+        for (int i = 0; i < 3; i++)
+          for (int j = 0; j < 3; j++) B[3 * i + j] += l * ga[i] * gb[j] + m * (ga[j] * gb[i] + (i == j ? dot : 0.));
+      }
+    }
+  }
+  // the dof-level lower triangle by rows: row 3 a + i holds, for each neighbour b < a, columns
+  // 3 b + j for every j, and for b = a the columns 3 a + j, j <= i
+  long n = 3 * nv, entries = 0;
+  for (long a = 0; a < nv; a++) entries += 9 * (rowStart[a + 1] - rowStart[a]) - 3;
+  std::vector<int> rows(entries), columns(entries);
+  std::vector<double> values(entries);
+  long e = 0;
+  for (long a = 0; a < nv; a++)
+    for (int i = 0; i < 3; i++)
+      for (long w = rowStart[a]; w < rowStart[a + 1]; w++) {
+        long b = neighbour[w];
+        for (int j = 0; j < 3 && (b < a || j <= i); j++) {
+          rows[e] = int(3 * a + i);
+          columns[e] = int(3 * b + j);
+          values[e] = block[9 * w + 3 * i + j];
+          e++;
+        }
+      }
+  ffassert(e == entries);
+  HashMatrix<int, double> *K = new HashMatrix<int, double>(int(n), int(n), 0, 1);
+  K->set(int(n), int(n), 1, size_t(entries), rows.data(), columns.data(), values.data());
+  pK->init();
+  pK->A.master(K);
+  pK->typemat = 0;
+  return entries;
+}
+
+long nodalCoupling2D(pmesh const &pTh, KN<double> *const &pCofactors, KN<double> *const &pNodalVolume,
+                     KN<double> *const &pWeights, Matrice_Creuse<double> *const &pC) {
+  ffassert(pTh);
+  const Mesh &Th = *pTh;
+  const KN<double> &cofactors = *pCofactors, &nodalVolume = *pNodalVolume, &weights = *pWeights;
+  const long nv = Th.nv, nt = Th.nt;
+  ffassert(cofactors.N() == 4 * nt && nodalVolume.N() == nv && weights.N() == nv);
+  // the triangles of each vertex
+  std::vector<long> start(nv + 1, 0);
+  for (long k = 0; k < nt; k++)
+    for (int p = 0; p < 3; p++) start[Th(Th[k][p]) + 1]++;
+  for (long v = 0; v < nv; v++) start[v + 1] += start[v];
+  std::vector<long> triangles(start[nv]);
+  {
+    std::vector<long> fill(start.begin(), start.end() - 1);
+    for (long k = 0; k < nt; k++)
+      for (int p = 0; p < 3; p++) triangles[fill[Th(Th[k][p])]++] = k;
+  }
+  // dJ_T/dU on each triangle's 6 dofs, scaled by |T| / 3
+  std::vector<double> derivative(6 * nt);
+  std::vector<int> dof(6 * nt);
+  for (long k = 0; k < nt; k++) {
+    const Mesh::Triangle &K = Th[k];
+    const R2 A = K[0], B = K[1], Cv = K[2];
+    const double det = (B.x - A.x) * (Cv.y - A.y) - (Cv.x - A.x) * (B.y - A.y);
+    double g[3][2];
+    g[1][0] = (Cv.y - A.y) / det;  g[1][1] = -(Cv.x - A.x) / det;
+    g[2][0] = -(B.y - A.y) / det;  g[2][1] = (B.x - A.x) / det;
+    g[0][0] = -g[1][0] - g[2][0];  g[0][1] = -g[1][1] - g[2][1];
+    const double c[2][2] = {{cofactors[k], cofactors[nt + k]}, {cofactors[2 * nt + k], cofactors[3 * nt + k]}};
+    const double share = K.area / 3;
+    for (int a = 0; a < 3; a++)
+      for (int i = 0; i < 2; i++) {
+        derivative[6 * k + 2 * a + i] = share * (c[i][0] * g[a][0] + c[i][1] * g[a][1]);
+        dof[6 * k + 2 * a + i] = int(2 * Th(K[a]) + i);
+      }
+  }
+  // row n of P C on its patch's dofs, then its weighted outer product added into C
+  HashMatrix<int, double> *C = pC->pHM();
+  ffassert(C && C->n == 2 * nv && C->m == 2 * nv && !C->half);
+  size_t before = C->nnz;
+  std::vector<int> rowDofs;
+  std::vector<double> rowValues;
+  for (long n = 0; n < nv; n++) {
+    rowDofs.clear();
+    rowValues.clear();
+    for (long m = start[n]; m < start[n + 1]; m++) {
+      long k = triangles[m];
+      for (int e = 0; e < 6; e++) {
+        int d = dof[6 * k + e];
+        size_t where = std::find(rowDofs.begin(), rowDofs.end(), d) - rowDofs.begin();
+        if (where == rowDofs.size()) { rowDofs.push_back(d); rowValues.push_back(0.); }
+        rowValues[where] += derivative[6 * k + e] / nodalVolume[n];
+      }
+    }
+    const double w = weights[n];
+    for (size_t r = 0; r < rowDofs.size(); r++)
+      for (size_t s = 0; s < rowDofs.size(); s++) C->insert(rowDofs[r], rowDofs[s], w * rowValues[r] * rowValues[s]);
+  }
+  return long(C->nnz - before);
+}
+
+void init() {
+  Global.Add("isotropicStiffnessLower", "(",
+             new OneOperator4_<long, pmesh3, KN<double> *, KN<double> *, Matrice_Creuse<double> *>(isotropicStiffnessLower));
+  Global.Add("nodalCoupling2D", "(",
+             new OneOperator5_<long, pmesh, KN<double> *, KN<double> *, KN<double> *, Matrice_Creuse<double> *>(nodalCoupling2D));
+}
+
+}  // namespace
+
+LOADFUNC(init)
