@@ -273,22 +273,6 @@ static long schurExpand(KN<double> *const &pb, KN<double> *const &pUc, KN<double
   return 0;
 }
 
-extern "C" void dpotrf_(const char *uplo, const int *n, double *a, const int *lda, int *info);
-
-// 1 when the last schurFactor's S is positive definite up to 1e-8 of its diagonal (LAPACK's
-// Cholesky succeeds on a copy of S + 1e-8 diag(S)), else 0. The margin keeps a body that only its
-// contact rows hold (S singular: its free translation) on the positive side: the rows bound it.
-static long schurPositiveDefinite() {
-  Condensation &c = condensation;
-  ffassert(c.alive);
-  // S's lower triangle by rows is its upper triangle by columns, the one dpotrf reads with "U"
-  std::vector<double> a(c.schur);
-  int n = int(c.nSchur), info = 0;
-  for (long i = 0; i < n; i++) a[i * n + i] *= 1 + 1e-8;
-  dpotrf_("U", &n, a.data(), &n, &info);
-  return info == 0 ? 1 : 0;
-}
-
 // [ordering s, analysis s, factorization s, entries in the factors, flops] of the last schurFactor
 static long schurStatistics(KN<double> *const &pStatistics) {
   pStatistics->resize(5);
@@ -302,7 +286,6 @@ static long schurRelease() {
 }
 
 static void init() {
-  Global.Add("schurPositiveDefinite", "(", new OneOperator0<long>(schurPositiveDefinite));
   Global.Add("schurFactor", "(", new OneOperator4_<long, Matrice_Creuse<double> *, KN<double> *, KN<long> *, KNM<double> *>(schurFactor));
   Global.Add("schurReduce", "(", new OneOperator2_<long, KN<double> *, KN<double> *>(schurReduce));
   Global.Add("schurExpand", "(", new OneOperator3_<long, KN<double> *, KN<double> *, KN<double> *>(schurExpand));
