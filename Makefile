@@ -60,7 +60,8 @@ plugin/schur_condensation.so: plugin/schur_condensation.cpp
 	@cd plugin && ff-c++ schur_condensation.cpp -I/usr/include/mumps_seq -ldmumps_seq -lmetis > build_schur.log 2>&1 || { cat build_schur.log; exit 1; }
 	@rm -f plugin/schur_condensation.o
 
-# linear elasticity's stiffness on P1 tetrahedra (include/body/elastic_energy.idp)
+# linear elasticity's stiffness on P1 tetrahedra (include/body/elastic_energy.idp) and the nodal
+# penalty's coupling in plane strain (include/body/volumetric.idp)
 plugin/fast_assembly.so: plugin/fast_assembly.cpp
 	@cd plugin && ff-c++ fast_assembly.cpp > build_fast_assembly.log 2>&1 || { cat build_fast_assembly.log; exit 1; }
 	@rm -f plugin/fast_assembly.o

@@ -1,5 +1,6 @@
 // fast_assembly: matrices of the suite that FreeFEM's varf and sparse products build slowly,
-// assembled in C++ (built by `make` with ff-c++, loaded by include/body/elastic_energy.idp).
+// assembled in C++ (built by `make` with ff-c++, loaded by include/body/elastic_energy.idp,
+// used there and in include/body/volumetric.idp).
 // Each is the same matrix as the script-level form it replaces, which stays the reference:
 // tests/stiffness_check.edp and tests/fd_volumetric.edp compare them.
 //
@@ -17,8 +18,8 @@
 // 2. nodalCoupling2D(Th, cofactors, nodalVolume, weights, K): adds to K the nodal volumetric
 //    penalty's coupling (P C)^T diag(weights) (P C) in plane strain (include/body/volumetric.idp): row n of
 //    P C is sum over the triangles T of vertex n of |T| / (3 V_n) dJ_T/dU, with
-//    dJ_T/du_(a,i) = sum_j cof(F_T)_ij g_a[j]. FreeFEM's sparse products took 60 ms of the O-ring's
-//    110 ms tangent at 4360 dofs. Th a 2D mesh, cofactors the P0 arrays of cof_11, cof_12, cof_21,
+//    dJ_T/du_(a,i) = sum_j cof(F_T)_ij g_a[j]. FreeFEM's sparse products and the matrix sum took
+//    43 ms a tangent at 4360 dofs (O-ring plates), this 13 ms. Th a 2D mesh, cofactors the P0 arrays of cof_11, cof_12, cof_21,
 //    cof_22 one after the other, K a whole matrix in the numbering of [P1, P1] (dof 2 v + c).
 // They return the number of entries stored (1) or added to the pattern (2).
 #include "ff++.hpp"
