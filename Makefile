@@ -40,16 +40,17 @@ N ?= 200
 sweep: deps
 	$(PYTHON) scripts/sweep.py --n $(N)
 
-# Debian's packages, then the suite's plugins: plugin/contact_runtime.cpp, which freefem++.pref loads,
-# plugin/schur_condensation.cpp, which the condensed solve loads, and plugin/fast_assembly.cpp
 # a folder of your own for your own problem: `make workspace DIR=~/my_contact` (docs/writing_your_own_problem.md)
 workspace: deps
 	@test -n "$(DIR)" || { echo "error: give the folder: make workspace DIR=<folder>"; exit 2; }
 	@bash scripts/workspace.sh "$(DIR)"
 
+# Debian's packages, then the suite's plugins: plugin/contact_runtime.cpp, which freefem++.pref loads,
+# and the three that include/ loads where they are used
+PLUGINS = plugin/contact_runtime.so plugin/schur_condensation.so plugin/fast_assembly.so plugin/msh_loader.so
 deps:
 	@bash scripts/install_deps.sh
-	@$(MAKE) -s --no-print-directory plugin/contact_runtime.so plugin/schur_condensation.so plugin/fast_assembly.so
+	@$(MAKE) -s --no-print-directory $(PLUGINS)
 
 plugin/contact_runtime.so: plugin/contact_runtime.cpp
 	@cd plugin && ff-c++ contact_runtime.cpp > build.log 2>&1 || { cat build.log; exit 1; }
@@ -66,5 +67,10 @@ plugin/fast_assembly.so: plugin/fast_assembly.cpp
 	@cd plugin && ff-c++ fast_assembly.cpp > build_fast_assembly.log 2>&1 || { cat build_fast_assembly.log; exit 1; }
 	@rm -f plugin/fast_assembly.o
 
+# gmsh's msh 2.2 files read into a mesh3 with an odd number of vertices (include/mesh/gmsh_mesh.idp)
+plugin/msh_loader.so: plugin/msh_loader.cpp
+	@cd plugin && ff-c++ msh_loader.cpp > build_msh_loader.log 2>&1 || { cat build_msh_loader.log; exit 1; }
+	@rm -f plugin/msh_loader.o
+
 clean:
-	rm -rf results plugin/contact_runtime.so plugin/schur_condensation.so plugin/fast_assembly.so plugin/build.log plugin/build_schur.log plugin/build_fast_assembly.log
+	rm -rf results $(PLUGINS) plugin/build.log plugin/build_schur.log plugin/build_fast_assembly.log plugin/build_msh_loader.log

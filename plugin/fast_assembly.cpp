@@ -21,7 +21,17 @@
 //    dJ_T/du_(a,i) = sum_j cof(F_T)_ij g_a[j]. FreeFEM's sparse products and the matrix sum took
 //    43 ms a tangent at 4360 dofs (O-ring plates), this 13 ms. Th a 2D mesh, cofactors the P0 arrays of cof_11, cof_12, cof_21,
 //    cof_22 one after the other, K a whole matrix in the numbering of [P1, P1] (dof 2 v + c).
-// They return the number of entries stored (1) or added to the pattern (2).
+// 3. tangentStiffness2D(Th, A, K): the tangent int Grad v : A : Grad w on P1 triangles in plane
+//    strain, the varf vStiffness of include/body/elastic_energy.idp with one-point quadrature (A is
+//    constant per element, so it is exact): entry (a i, b k) is |T| sum_JL A_(iJ)(kL) g_a[J] g_b[L].
+//    A the 16 P0 arrays of the in-plane components one after the other, pair (iJ, kL) at
+//    (4 (2 i + J) + 2 k + L) nt; K receives the whole matrix in the numbering of [P1, P1]. The varf
+//    took 5 ms a tangent at 1146 dofs (O-ring plates), most of it FreeFEM evaluating the 16-field
+//    integrand at each element.
+// 4. internalForce2D(Th, P, f): the internal forces int P : Grad v on P1 triangles in plane strain
+//    (the varf vInternalForce): f[2 a + i] = sum over the triangles of a of |T| sum_J P_iJ g_a[J],
+//    P the 4 P0 arrays P_11, P_12, P_21, P_22 one after the other.
+// They return the number of entries stored (1, 3), added to the pattern (2) or the dofs (4).
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
 #include <algorithm>
@@ -179,9 +189,116 @@ long nodalCoupling2D(pmesh const &pTh, KN<double> *const &pCofactors, KN<double>
   return long(C->nnz - before);
 }
 
+// the gradients of a triangle's barycentric coordinates
+void barycentricGradients(const Mesh::Triangle &K, double g[3][2]) {
+  const R2 A = K[0], B = K[1], C = K[2];
+  const double det = (B.x - A.x) * (C.y - A.y) - (C.x - A.x) * (B.y - A.y);
+  g[1][0] = (C.y - A.y) / det;  g[1][1] = -(C.x - A.x) / det;
+  g[2][0] = -(B.y - A.y) / det;  g[2][1] = (B.x - A.x) / det;
+  g[0][0] = -g[1][0] - g[2][0];  g[0][1] = -g[1][1] - g[2][1];
+}
+
+long tangentStiffness2D(pmesh const &pTh, KN<double> *const &pA, Matrice_Creuse<double> *const &pK) {
+  ffassert(pTh);
+  const Mesh &Th = *pTh;
+  const KN<double> &A = *pA;
+  const long nv = Th.nv, nt = Th.nt;
+  ffassert(A.N() == 16 * nt);
+  // each vertex's neighbours (itself included), sorted, without repeats
+  std::vector<long> start(nv + 1, 0);
+  for (long k = 0; k < nt; k++)
+    for (int p = 0; p < 3; p++) start[Th(Th[k][p]) + 1] += 3;
+  for (long a = 0; a < nv; a++) start[a + 1] += start[a];
+  std::vector<int> neighbour(start[nv]);
+  {
+    std::vector<long> fill(start.begin(), start.end() - 1);
+    for (long k = 0; k < nt; k++)
+      for (int p = 0; p < 3; p++)
+        for (int q = 0; q < 3; q++) neighbour[fill[Th(Th[k][p])]++] = int(Th(Th[k][q]));
+  }
+  std::vector<long> rowStart(nv + 1, 0);
+  long pairs = 0;
+  for (long a = 0; a < nv; a++) {
+    std::sort(neighbour.begin() + start[a], neighbour.begin() + start[a + 1]);
+    rowStart[a] = pairs;
+    for (long m = start[a]; m < start[a + 1]; m++)
+      if (m == start[a] || neighbour[m] != neighbour[m - 1]) neighbour[pairs++] = neighbour[m];
+  }
+  rowStart[nv] = pairs;
+  // the 2 x 2 blocks of the vertex pairs, summed over the triangles
+  std::vector<double> block(4 * pairs, 0.);
+  for (long k = 0; k < nt; k++) {
+    const Mesh::Triangle &K = Th[k];
+    double g[3][2];
+    barycentricGradients(K, g);
+    double a16[16];
+    for (int r = 0; r < 16; r++) a16[r] = K.area * A[r * nt + k];
+    for (int p = 0; p < 3; p++) {
+      long a = Th(K[p]);
+      for (int q = 0; q < 3; q++) {
+        long b = Th(K[q]);
+        long where = std::lower_bound(neighbour.begin() + rowStart[a], neighbour.begin() + rowStart[a + 1], int(b))
+                     - neighbour.begin();
+        double *B = &block[4 * where];
+        for (int i = 0; i < 2; i++)
+          for (int c = 0; c < 2; c++) {
+            double sum = 0;
+            for (int J = 0; J < 2; J++)
+              for (int L = 0; L < 2; L++) sum += a16[4 * (2 * i + J) + 2 * c + L] * g[p][J] * g[q][L];
+            B[2 * i + c] += sum;
+          }
+      }
+    }
+  }
+  long n = 2 * nv, entries = 4 * pairs;
+  std::vector<int> rows(entries), columns(entries);
+  std::vector<double> values(entries);
+  long e = 0;
+  for (long a = 0; a < nv; a++)
+    for (int i = 0; i < 2; i++)
+      for (long w = rowStart[a]; w < rowStart[a + 1]; w++)
+        for (int c = 0; c < 2; c++) {
+          rows[e] = int(2 * a + i);
+          columns[e] = int(2 * neighbour[w] + c);
+          values[e] = block[4 * w + 2 * i + c];
+          e++;
+        }
+  HashMatrix<int, double> *K = new HashMatrix<int, double>(int(n), int(n), 0, 0);
+  K->set(int(n), int(n), 0, size_t(entries), rows.data(), columns.data(), values.data());
+  pK->init();
+  pK->A.master(K);
+  pK->typemat = 0;
+  return entries;
+}
+
+long internalForce2D(pmesh const &pTh, KN<double> *const &pP, KN<double> *const &pf) {
+  ffassert(pTh);
+  const Mesh &Th = *pTh;
+  const KN<double> &P = *pP;
+  const long nv = Th.nv, nt = Th.nt;
+  ffassert(P.N() == 4 * nt);
+  KN<double> &f = *pf;
+  f.resize(2 * nv);
+  f = 0.;
+  for (long k = 0; k < nt; k++) {
+    const Mesh::Triangle &K = Th[k];
+    double g[3][2];
+    barycentricGradients(K, g);
+    const double p[4] = {P[k], P[nt + k], P[2 * nt + k], P[3 * nt + k]};
+    for (int a = 0; a < 3; a++) {
+      long v = Th(K[a]);
+      for (int i = 0; i < 2; i++) f[2 * v + i] += K.area * (p[2 * i] * g[a][0] + p[2 * i + 1] * g[a][1]);
+    }
+  }
+  return 2 * nv;
+}
+
 void init() {
   Global.Add("isotropicStiffnessLower", "(",
              new OneOperator4_<long, pmesh3, KN<double> *, KN<double> *, Matrice_Creuse<double> *>(isotropicStiffnessLower));
+  Global.Add("tangentStiffness2D", "(",
+             new OneOperator3_<long, pmesh, KN<double> *, Matrice_Creuse<double> *>(tangentStiffness2D));
+  Global.Add("internalForce2D", "(", new OneOperator3_<long, pmesh, KN<double> *, KN<double> *>(internalForce2D));
   Global.Add("nodalCoupling2D", "(",
              new OneOperator5_<long, pmesh, KN<double> *, KN<double> *, KN<double> *, Matrice_Creuse<double> *>(nodalCoupling2D));
 }

@@ -114,8 +114,9 @@ def test_linear_stiffness():
     """Linear elasticity's Hessian from its Lame form against the generic tangent assembly
     (stiffness_check.edp), P1 and P2 in 2D, P1 in 3D and axisymmetric, whole and as the lower
     triangle (plugin/fast_assembly.cpp on P1 tetrahedra, also with moduli varying per
-    element against the varf): the same bilinear form, so equal to rounding (1e-12)."""
-    check_script_cases("stiffness_check", 5)
+    element against the varf), and a hyperelastic law's tangent and internal forces in plane
+    strain from the plugin against their varfs: the same forms, so equal to rounding (1e-12)."""
+    check_script_cases("stiffness_check", 6)
 
 
 def test_obstacle_derivatives():
