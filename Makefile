@@ -47,7 +47,8 @@ workspace: deps
 
 # Debian's packages, then the suite's plugins: plugin/contact_runtime.cpp, which freefem++.pref loads,
 # and the three that include/ loads where they are used
-PLUGINS = plugin/contact_runtime.so plugin/schur_condensation.so plugin/fast_assembly.so plugin/msh_loader.so
+PLUGINS = plugin/contact_runtime.so plugin/schur_condensation.so plugin/fast_assembly.so plugin/msh_loader.so \
+          plugin/vtu_writer.so
 deps:
 	@bash scripts/install_deps.sh
 	@$(MAKE) -s --no-print-directory $(PLUGINS)
@@ -72,5 +73,10 @@ plugin/msh_loader.so: plugin/msh_loader.cpp
 	@cd plugin && ff-c++ msh_loader.cpp > build_msh_loader.log 2>&1 || { cat build_msh_loader.log; exit 1; }
 	@rm -f plugin/msh_loader.o
 
+# the results' .vtu from the coefficient arrays (include/solver.idp)
+plugin/vtu_writer.so: plugin/vtu_writer.cpp
+	@cd plugin && ff-c++ vtu_writer.cpp > build_vtu_writer.log 2>&1 || { cat build_vtu_writer.log; exit 1; }
+	@rm -f plugin/vtu_writer.o
+
 clean:
-	rm -rf results $(PLUGINS) plugin/build.log plugin/build_schur.log plugin/build_fast_assembly.log plugin/build_msh_loader.log
+	rm -rf results $(PLUGINS) plugin/build.log plugin/build_schur.log plugin/build_fast_assembly.log plugin/build_msh_loader.log plugin/build_vtu_writer.log

@@ -1,0 +1,140 @@
+// vtu_writer: the results' ParaView file (.vtu) for P1 fields, written from the coefficient arrays
+// (built by `make` with ff-c++, loaded by include/solver.idp).
+//
+// Why: FreeFEM's savevtk (iovtk) evaluates each field through its finite-element machinery, cell
+// by cell: 2.75 s for the 3D Hertz sphere's 391k tetrahedra (201k dofs), against 0.2 s here, where
+// the values are already one per vertex (P1 displacement) or one per element (P0 fields).
+//
+// writeVtu(file, Th, U, cellData, names): Th a 2D mesh or a mesh3; U the displacement's dof vector
+// in the numbering of [P1, P1] or [P1, P1, P1] (dof d v + c), written as the point field
+// "displacement" with 3 components (0 out of plane); cellData the P0 arrays one after the other
+// (nt values each), written as cell fields named by the space-separated `names`. The layout is
+// savevtk's: XML UnstructuredGrid, inline base64 "binary" arrays each led by its 4-byte length,
+// Float32 values, the element cells only (triangles, VTK type 5, or tetrahedra, type 10).
+// scripts/vtu.py reads it for the report's figures. Returns the number of cells; a file it cannot
+// write ends the run with "error: ..." and exit code 2.
+#include "ff++.hpp"
+#include "AFunction_ext.hpp"
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+// base64 of the 4-byte little-endian length followed by the bytes
+std::string base64Block(const void *data, uint32_t bytes) {
+  static const char alphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::vector<unsigned char> in(4 + size_t(bytes));
+  for (int b = 0; b < 4; b++) in[b] = (unsigned char)((bytes >> (8 * b)) & 0xff);
+  const unsigned char *source = static_cast<const unsigned char *>(data);
+  std::copy(source, source + bytes, in.begin() + 4);
+  std::string out;
+  out.reserve((in.size() + 2) / 3 * 4);
+  size_t i = 0;
+  for (; i + 2 < in.size(); i += 3) {
+    uint32_t v = (uint32_t(in[i]) << 16) | (uint32_t(in[i + 1]) << 8) | in[i + 2];
+    out += alphabet[(v >> 18) & 63]; out += alphabet[(v >> 12) & 63]; out += alphabet[(v >> 6) & 63]; out += alphabet[v & 63];
+  }
+  if (i < in.size()) {
+    uint32_t v = uint32_t(in[i]) << 16;
+    if (i + 1 < in.size()) v |= uint32_t(in[i + 1]) << 8;
+    out += alphabet[(v >> 18) & 63]; out += alphabet[(v >> 12) & 63];
+    out += (i + 1 < in.size()) ? alphabet[(v >> 6) & 63] : '=';
+    out += '=';
+  }
+  return out;
+}
+
+template <class T>
+void dataArray(FILE *f, const char *type, const std::string &name, int components, const std::vector<T> &values) {
+  std::fprintf(f, "<DataArray type=\"%s\"%s%s%s NumberOfComponents=\"%d\" format=\"binary\">\n", type,
+               name.empty() ? "" : " Name=\"", name.c_str(), name.empty() ? "" : "\"", components);
+  std::string text = base64Block(values.data(), uint32_t(values.size() * sizeof(T)));
+  std::fputs(text.c_str(), f);
+  std::fputs("\n</DataArray>\n", f);
+}
+
+// the mesh's vertices, elements (d + 1 vertex numbers each) and the fields, written to file
+long writeFile(const std::string &file, long nv, long nt, int d, const std::vector<float> &points,
+           const std::vector<int32_t> &connectivity, const KN<double> &U, const KN<double> &cellData,
+           const std::string &names) {
+  std::vector<std::string> fields;
+  std::istringstream words(names);
+  for (std::string w; words >> w;) fields.push_back(w);
+  if (U.N() != d * nv || cellData.N() != long(fields.size()) * nt) {
+    std::cout << "error: writeVtu: " << U.N() << " displacement values for " << nv << " vertices in " << d
+              << "D, or " << cellData.N() << " cell values for " << fields.size() << " fields on " << nt << " elements"
+              << std::endl;
+    std::exit(2);
+  }
+  FILE *f = std::fopen(file.c_str(), "w");
+  if (!f) {
+    std::cout << "error: cannot write " << file << std::endl;
+    std::exit(2);
+  }
+  std::fprintf(f, "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" byte_order=\"LittleEndian\">\n");
+  std::fprintf(f, "<UnstructuredGrid>\n<Piece NumberOfPoints=\"%ld\" NumberOfCells=\"%ld\">\n<Points>\n", nv, nt);
+  dataArray(f, "Float32", "", 3, points);
+  std::fprintf(f, "</Points>\n<Cells>\n");
+  dataArray(f, "Int32", "connectivity", 1, connectivity);
+  std::vector<int32_t> offsets(nt);
+  for (long k = 0; k < nt; k++) offsets[k] = int32_t((k + 1) * (d + 1));
+  dataArray(f, "Int32", "offsets", 1, offsets);
+  std::vector<uint8_t> types(nt, uint8_t(d == 3 ? 10 : 5));
+  dataArray(f, "UInt8", "types", 1, types);
+  std::fprintf(f, "</Cells>\n<PointData>\n");
+  std::vector<float> displacement(3 * nv, 0.f);
+  for (long v = 0; v < nv; v++)
+    for (int c = 0; c < d; c++) displacement[3 * v + c] = float(U[d * v + c]);
+  dataArray(f, "Float32", "displacement", 3, displacement);
+  std::fprintf(f, "</PointData>\n<CellData>\n");
+  std::vector<float> values(nt);
+  for (size_t m = 0; m < fields.size(); m++) {
+    for (long k = 0; k < nt; k++) values[k] = float(cellData[long(m) * nt + k]);
+    dataArray(f, "Float32", fields[m], 1, values);
+  }
+  std::fprintf(f, "</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
+  if (std::fclose(f) != 0) {
+    std::cout << "error: cannot write " << file << std::endl;
+    std::exit(2);
+  }
+  return nt;
+}
+
+long writeVtu2D(string *const &file, pmesh const &pTh, KN<double> *const &pU, KN<double> *const &pCells,
+                string *const &names) {
+  ffassert(pTh);
+  const Mesh &Th = *pTh;
+  std::vector<float> points(3 * Th.nv, 0.f);
+  for (long v = 0; v < Th.nv; v++) { points[3 * v] = float(Th(v).x); points[3 * v + 1] = float(Th(v).y); }
+  std::vector<int32_t> connectivity(3 * Th.nt);
+  for (long k = 0; k < Th.nt; k++)
+    for (int a = 0; a < 3; a++) connectivity[3 * k + a] = int32_t(Th(Th[k][a]));
+  return writeFile(*file, Th.nv, Th.nt, 2, points, connectivity, *pU, *pCells, *names);
+}
+
+long writeVtu3D(string *const &file, pmesh3 const &pTh, KN<double> *const &pU, KN<double> *const &pCells,
+                string *const &names) {
+  ffassert(pTh);
+  const Mesh3 &Th = *pTh;
+  std::vector<float> points(3 * Th.nv);
+  for (long v = 0; v < Th.nv; v++) {
+    points[3 * v] = float(Th(v).x); points[3 * v + 1] = float(Th(v).y); points[3 * v + 2] = float(Th(v).z);
+  }
+  std::vector<int32_t> connectivity(4 * Th.nt);
+  for (long k = 0; k < Th.nt; k++)
+    for (int a = 0; a < 4; a++) connectivity[4 * k + a] = int32_t(Th(Th[k][a]));
+  return writeFile(*file, Th.nv, Th.nt, 3, points, connectivity, *pU, *pCells, *names);
+}
+
+void init() {
+  Global.Add("writeVtu", "(", new OneOperator5_<long, string *, pmesh, KN<double> *, KN<double> *, string *>(writeVtu2D));
+  Global.Add("writeVtu", "(", new OneOperator5_<long, string *, pmesh3, KN<double> *, KN<double> *, string *>(writeVtu3D));
+}
+
+}  // namespace
+
+LOADFUNC(init)
