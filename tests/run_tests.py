@@ -207,6 +207,24 @@ def test_output_contract():
     text = open(vtu, errors="replace").read() if os.path.exists(vtu) else ""
     check("cube.vtu holds displacement, J, von Mises",
           all(f'Name="{n}"' in text for n in ("displacement", "J", "von_Mises")))
+    # its values (written from the arrays by plugin/vtu_writer.cpp, float32): the block's deformation
+    # is homogeneous, so the largest |u_y| is the summary's w, J is J_min in every element and the
+    # largest von Mises is the summary's, each to float32 rounding (6e-8; bound 1e-6)
+    if text:
+        from vtu import read_vtu
+        import numpy as np
+        points, cells, types, pdata, cdata = read_vtu(vtu)
+        r = s.get("results", {})
+        dim = 3 if s.get("parameters", {}).get("dim") == 3 else 2
+        w = r.get("w", {}).get("computed", float("nan"))
+        check("cube.vtu: one displacement per vertex", len(points) == s.get("ndof", 0) // dim, f"{len(points)} points")
+        check("cube.vtu: largest |u_y| = w to 1e-6", abs(np.abs(pdata["displacement"][:, 1]).max() - w) <= 1e-6 * w,
+              f"{np.abs(pdata['displacement'][:, 1]).max():.9g} vs {w:.9g}")
+        jmin = r.get("J_min", {}).get("computed", float("nan"))
+        check("cube.vtu: J = J_min in every element to 1e-6", np.abs(cdata["J"] - jmin).max() <= 1e-6, f"{np.abs(cdata['J'] - jmin).max():.1e}")
+        vm = r.get("von_mises_max", {}).get("computed", float("nan"))
+        check("cube.vtu: largest von Mises = the summary's to 1e-6", abs(cdata["von_Mises"].max() - vm) <= 1e-6 * vm,
+              f"{cdata['von_Mises'].max():.9g} vs {vm:.9g}")
     logs = [f for f in os.listdir(o) if f.startswith("ipopt_step")] if os.path.isdir(o) else []
     check("IPOPT log is in the output folder", len(logs) == 1, str(logs))
 
