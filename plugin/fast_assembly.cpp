@@ -1,8 +1,9 @@
-// fast_assembly: matrices of the suite that FreeFEM's varf and sparse products build slowly,
-// assembled in C++ (built by `make` with ff-c++, loaded by include/body/elastic_energy.idp,
-// used there and in include/body/volumetric.idp).
-// Each is the same matrix as the script-level form it replaces, which stays the reference:
-// tests/stiffness_check.edp and tests/fd_volumetric.edp compare them.
+// fast_assembly: what FreeFEM's varf, sparse products and interpolation build slowly, assembled in
+// C++ from the same P0 fields (built by `make` with ff-c++, loaded by
+// include/body/elastic_energy.idp and used there). The laws stay in their .idp files: these
+// functions only sum element contributions. Each gives the values of the script-level form it
+// replaces, which stays the reference: tests/stiffness_check.edp and tests/fd_volumetric.edp
+// compare them.
 //
 // 1. isotropicStiffnessLower(Th, lambda, mu, K): small-strain isotropic elasticity on P1
 //    tetrahedra, lower triangle: the varf vIsotropicStiffness,
@@ -15,28 +16,29 @@
 //    component c. Entry (a i, b j), vertex a component i against vertex b component j, on an
 //    element of volume V whose barycentric coordinates have the gradients g:
 //      V (lambda g_a[i] g_b[j] + mu (g_a[j] g_b[i] + delta_ij g_a . g_b)).
-// 2. nodalCoupling2D(Th, cofactors, nodalVolume, weights, K): adds to K the nodal volumetric
-//    penalty's coupling (P C)^T diag(weights) (P C) in plane strain (include/body/volumetric.idp): row n of
-//    P C is sum over the triangles T of vertex n of |T| / (3 V_n) dJ_T/dU, with
-//    dJ_T/du_(a,i) = sum_j cof(F_T)_ij g_a[j]. FreeFEM's sparse products and the matrix sum took
-//    43 ms a tangent at 4360 dofs (O-ring plates), this 13 ms. Th a 2D mesh, cofactors the P0 arrays of cof_11, cof_12, cof_21,
-//    cof_22 one after the other, K a whole matrix in the numbering of [P1, P1] (dof 2 v + c).
-// 3. tangentStiffness2D(Th, A, K): the tangent int Grad v : A : Grad w on P1 triangles in plane
-//    strain, the varf vStiffness of include/body/elastic_energy.idp with one-point quadrature (A is
-//    constant per element, so it is exact): entry (a i, b k) is |T| sum_JL A_(iJ)(kL) g_a[J] g_b[L].
-//    A the 16 P0 arrays of the in-plane components one after the other, pair (iJ, kL) at
-//    (4 (2 i + J) + 2 k + L) nt; K receives the whole matrix in the numbering of [P1, P1]. The varf
-//    took 5 ms a tangent at 1146 dofs (O-ring plates), most of it FreeFEM evaluating the 16-field
-//    integrand at each element.
-// 4. internalForce2D(Th, P, f): the internal forces int P : Grad v on P1 triangles in plane strain
+// 2. tangentStiffness2D(Th, A, cofactors, nodalVolume, weights, K): a hyperelastic law's tangent on
+//    P1 triangles in plane strain, int Grad v : A : Grad w (the varf vStiffness with one-point
+//    quadrature, exact since A is constant per element): entry (a i, b k) is
+//    |T| sum_JL A_(iJ)(kL) g_a[J] g_b[L]. A the 16 P0 arrays of the in-plane component pairs one
+//    after the other, pair (iJ, kL) at (4 (2 i + J) + 2 k + L) nt. With weights (one per vertex;
+//    an empty array for none) it adds the nodal volumetric penalty's coupling
+//    (P C)^T diag(weights) (P C) of include/body/volumetric.idp: row n of P C is the sum over the
+//    triangles T of vertex n of |T| / (3 V_n) dJ_T/dU, dJ_T/du_(a,i) = sum_j cof(F_T)_ij g_a[j],
+//    cofactors the P0 arrays of cof_11, cof_12, cof_21, cof_22 one after the other. K receives the
+//    whole matrix in the numbering of [P1, P1] (dof 2 v + c), its pattern the vertex pairs that
+//    share a triangle, or with the coupling a vertex's patch. At 1146 dofs (O-ring plates) the varf
+//    took 5 ms a tangent (FreeFEM evaluating the 16-field integrand at each element), and adding
+//    the coupling into the varf's matrix took 43 ms with FreeFEM's products and sum at 4360 dofs
+//    (13 ms inserted into it from C++, 2 ms summed with the tangent here).
+// 3. internalForce2D(Th, P, f): the internal forces int P : Grad v on P1 triangles in plane strain
 //    (the varf vInternalForce): f[2 a + i] = sum over the triangles of a of |T| sum_J P_iJ g_a[J],
 //    P the 4 P0 arrays P_11, P_12, P_21, P_22 one after the other.
-// 5. p1DisplacementGradients(Th, U, G): grad u on each P1 triangle or tetrahedron, u the field of
+// 4. p1DisplacementGradients(Th, U, G): grad u on each P1 triangle or tetrahedron, u the field of
 //    dof vector U ([P1, P1] or [P1, P1, P1]: dof d v + c): G[(3 i + J) nt + k] = du_i/dX_J on
 //    element k (the 3 x 3 layout of the deformation gradient; the out-of-plane entries of a
 //    triangle are 0). FreeFEM interpolates each component into P0 through its finite-element
 //    machinery: 1.8 s for the 9 of the 3D sphere's 391k tetrahedra.
-// They return the number of entries stored (1, 3), added to the pattern (2) or the values (4, 5).
+// They return the number of entries stored (1, 2) or of values (3, 4).
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
 #include <algorithm>
@@ -132,68 +134,6 @@ long isotropicStiffnessLower(pmesh3 const &pTh, KN<double> *const &pLambda, KN<d
   return entries;
 }
 
-long nodalCoupling2D(pmesh const &pTh, KN<double> *const &pCofactors, KN<double> *const &pNodalVolume,
-                     KN<double> *const &pWeights, Matrice_Creuse<double> *const &pC) {
-  ffassert(pTh);
-  const Mesh &Th = *pTh;
-  const KN<double> &cofactors = *pCofactors, &nodalVolume = *pNodalVolume, &weights = *pWeights;
-  const long nv = Th.nv, nt = Th.nt;
-  ffassert(cofactors.N() == 4 * nt && nodalVolume.N() == nv && weights.N() == nv);
-  // the triangles of each vertex
-  std::vector<long> start(nv + 1, 0);
-  for (long k = 0; k < nt; k++)
-    for (int p = 0; p < 3; p++) start[Th(Th[k][p]) + 1]++;
-  for (long v = 0; v < nv; v++) start[v + 1] += start[v];
-  std::vector<long> triangles(start[nv]);
-  {
-    std::vector<long> fill(start.begin(), start.end() - 1);
-    for (long k = 0; k < nt; k++)
-      for (int p = 0; p < 3; p++) triangles[fill[Th(Th[k][p])]++] = k;
-  }
-  // dJ_T/dU on each triangle's 6 dofs, scaled by |T| / 3
-  std::vector<double> derivative(6 * nt);
-  std::vector<int> dof(6 * nt);
-  for (long k = 0; k < nt; k++) {
-    const Mesh::Triangle &K = Th[k];
-    const R2 A = K[0], B = K[1], Cv = K[2];
-    const double det = (B.x - A.x) * (Cv.y - A.y) - (Cv.x - A.x) * (B.y - A.y);
-    double g[3][2];
-    g[1][0] = (Cv.y - A.y) / det;  g[1][1] = -(Cv.x - A.x) / det;
-    g[2][0] = -(B.y - A.y) / det;  g[2][1] = (B.x - A.x) / det;
-    g[0][0] = -g[1][0] - g[2][0];  g[0][1] = -g[1][1] - g[2][1];
-    const double c[2][2] = {{cofactors[k], cofactors[nt + k]}, {cofactors[2 * nt + k], cofactors[3 * nt + k]}};
-    const double share = K.area / 3;
-    for (int a = 0; a < 3; a++)
-      for (int i = 0; i < 2; i++) {
-        derivative[6 * k + 2 * a + i] = share * (c[i][0] * g[a][0] + c[i][1] * g[a][1]);
-        dof[6 * k + 2 * a + i] = int(2 * Th(K[a]) + i);
-      }
-  }
-  // row n of P C on its patch's dofs, then its weighted outer product added into C
-  HashMatrix<int, double> *C = pC->pHM();
-  ffassert(C && C->n == 2 * nv && C->m == 2 * nv && !C->half);
-  size_t before = C->nnz;
-  std::vector<int> rowDofs;
-  std::vector<double> rowValues;
-  for (long n = 0; n < nv; n++) {
-    rowDofs.clear();
-    rowValues.clear();
-    for (long m = start[n]; m < start[n + 1]; m++) {
-      long k = triangles[m];
-      for (int e = 0; e < 6; e++) {
-        int d = dof[6 * k + e];
-        size_t where = std::find(rowDofs.begin(), rowDofs.end(), d) - rowDofs.begin();
-        if (where == rowDofs.size()) { rowDofs.push_back(d); rowValues.push_back(0.); }
-        rowValues[where] += derivative[6 * k + e] / nodalVolume[n];
-      }
-    }
-    const double w = weights[n];
-    for (size_t r = 0; r < rowDofs.size(); r++)
-      for (size_t s = 0; s < rowDofs.size(); s++) C->insert(rowDofs[r], rowDofs[s], w * rowValues[r] * rowValues[s]);
-  }
-  return long(C->nnz - before);
-}
-
 // the gradients of a triangle's barycentric coordinates
 void barycentricGradients(const Mesh::Triangle &K, double g[3][2]) {
   const R2 A = K[0], B = K[1], C = K[2];
@@ -203,23 +143,54 @@ void barycentricGradients(const Mesh::Triangle &K, double g[3][2]) {
   g[0][0] = -g[1][0] - g[2][0];  g[0][1] = -g[1][1] - g[2][1];
 }
 
-long tangentStiffness2D(pmesh const &pTh, KN<double> *const &pA, Matrice_Creuse<double> *const &pK) {
+long tangentStiffness2D(pmesh const &pTh, KN<double> *const &pA, KN<double> *const &pCofactors,
+                        KN<double> *const &pNodalVolume, KN<double> *const &pWeights, Matrice_Creuse<double> *const &pK) {
   ffassert(pTh);
   const Mesh &Th = *pTh;
-  const KN<double> &A = *pA;
+  const KN<double> &A = *pA, &cofactors = *pCofactors, &nodalVolume = *pNodalVolume, &weights = *pWeights;
   const long nv = Th.nv, nt = Th.nt;
   ffassert(A.N() == 16 * nt);
-  // each vertex's neighbours (itself included), sorted, without repeats
-  std::vector<long> start(nv + 1, 0);
+  const bool coupled = weights.N() > 0;
+  ffassert(!coupled || (cofactors.N() == 4 * nt && nodalVolume.N() == nv && weights.N() == nv));
+  // the triangles of each vertex
+  std::vector<long> first(nv + 1, 0);
   for (long k = 0; k < nt; k++)
-    for (int p = 0; p < 3; p++) start[Th(Th[k][p]) + 1] += 3;
+    for (int p = 0; p < 3; p++) first[Th(Th[k][p]) + 1]++;
+  for (long v = 0; v < nv; v++) first[v + 1] += first[v];
+  std::vector<long> triangles(first[nv]);
+  {
+    std::vector<long> fill(first.begin(), first.end() - 1);
+    for (long k = 0; k < nt; k++)
+      for (int p = 0; p < 3; p++) triangles[fill[Th(Th[k][p])]++] = k;
+  }
+  // each vertex's patch: the vertices of its triangles (itself included), sorted, without repeats
+  std::vector<long> patchStart(nv + 1, 0);
+  std::vector<int> patch;
+  patch.reserve(7 * nv);
+  for (long v = 0; v < nv; v++) {
+    size_t from = patch.size();
+    for (long m = first[v]; m < first[v + 1]; m++)
+      for (int p = 0; p < 3; p++) patch.push_back(int(Th(Th[triangles[m]][p])));
+    std::sort(patch.begin() + from, patch.end());
+    patch.erase(std::unique(patch.begin() + from, patch.end()), patch.end());
+    patchStart[v + 1] = long(patch.size());
+  }
+  // the vertex pattern: a's patch, and with the coupling every vertex sharing a patch with a
+  std::vector<long> start(nv + 1, 0);
+  for (long n = 0; n < nv; n++) {
+    long size = patchStart[n + 1] - patchStart[n];
+    if (coupled) for (long p = patchStart[n]; p < patchStart[n + 1]; p++) start[patch[p] + 1] += size;
+    else start[n + 1] += size;
+  }
   for (long a = 0; a < nv; a++) start[a + 1] += start[a];
   std::vector<int> neighbour(start[nv]);
   {
     std::vector<long> fill(start.begin(), start.end() - 1);
-    for (long k = 0; k < nt; k++)
-      for (int p = 0; p < 3; p++)
-        for (int q = 0; q < 3; q++) neighbour[fill[Th(Th[k][p])]++] = int(Th(Th[k][q]));
+    for (long n = 0; n < nv; n++)
+      for (long p = patchStart[n]; p < patchStart[n + 1]; p++) {
+        if (!coupled && patch[p] != n) continue;
+        for (long q = patchStart[n]; q < patchStart[n + 1]; q++) neighbour[fill[patch[p]]++] = patch[q];
+      }
   }
   std::vector<long> rowStart(nv + 1, 0);
   long pairs = 0;
@@ -230,8 +201,12 @@ long tangentStiffness2D(pmesh const &pTh, KN<double> *const &pA, Matrice_Creuse<
       if (m == start[a] || neighbour[m] != neighbour[m - 1]) neighbour[pairs++] = neighbour[m];
   }
   rowStart[nv] = pairs;
-  // the 2 x 2 blocks of the vertex pairs, summed over the triangles
+  auto blockOf = [&](long a, long b) {
+    return std::lower_bound(neighbour.begin() + rowStart[a], neighbour.begin() + rowStart[a + 1], int(b)) - neighbour.begin();
+  };
+  // the 2 x 2 blocks of the vertex pairs: the tangent summed over the triangles
   std::vector<double> block(4 * pairs, 0.);
+  std::vector<double> derivative(coupled ? 6 * nt : 0);   // |T| / 3 dJ_T/du on T's 6 dofs
   for (long k = 0; k < nt; k++) {
     const Mesh::Triangle &K = Th[k];
     double g[3][2];
@@ -241,10 +216,7 @@ long tangentStiffness2D(pmesh const &pTh, KN<double> *const &pA, Matrice_Creuse<
     for (int p = 0; p < 3; p++) {
       long a = Th(K[p]);
       for (int q = 0; q < 3; q++) {
-        long b = Th(K[q]);
-        long where = std::lower_bound(neighbour.begin() + rowStart[a], neighbour.begin() + rowStart[a + 1], int(b))
-                     - neighbour.begin();
-        double *B = &block[4 * where];
+        double *B = &block[4 * blockOf(a, Th(K[q]))];
         for (int i = 0; i < 2; i++)
           for (int c = 0; c < 2; c++) {
             double sum = 0;
@@ -253,6 +225,34 @@ long tangentStiffness2D(pmesh const &pTh, KN<double> *const &pA, Matrice_Creuse<
             B[2 * i + c] += sum;
           }
       }
+    }
+    if (coupled) {
+      const double cof[2][2] = {{cofactors[k], cofactors[nt + k]}, {cofactors[2 * nt + k], cofactors[3 * nt + k]}};
+      for (int p = 0; p < 3; p++)
+        for (int i = 0; i < 2; i++)
+          derivative[6 * k + 2 * p + i] = K.area / 3 * (cof[i][0] * g[p][0] + cof[i][1] * g[p][1]);
+    }
+  }
+  // the nodal penalty's coupling: row n of P C on n's patch, its weighted outer product
+  if (coupled) {
+    std::vector<double> row;
+    for (long n = 0; n < nv; n++) {
+      const long from = patchStart[n], size = patchStart[n + 1] - from;
+      row.assign(2 * size, 0.);
+      for (long m = first[n]; m < first[n + 1]; m++) {
+        long k = triangles[m];
+        for (int p = 0; p < 3; p++) {
+          long at = std::lower_bound(patch.begin() + from, patch.begin() + from + size, int(Th(Th[k][p]))) - patch.begin() - from;
+          for (int i = 0; i < 2; i++) row[2 * at + i] += derivative[6 * k + 2 * p + i] / nodalVolume[n];
+        }
+      }
+      const double w = weights[n];
+      for (long p = 0; p < size; p++)
+        for (long q = 0; q < size; q++) {
+          double *B = &block[4 * blockOf(patch[from + p], patch[from + q])];
+          for (int i = 0; i < 2; i++)
+            for (int c = 0; c < 2; c++) B[2 * i + c] += w * row[2 * p + i] * row[2 * q + c];
+        }
     }
   }
   long n = 2 * nv, entries = 4 * pairs;
@@ -349,14 +349,13 @@ void init() {
   Global.Add("isotropicStiffnessLower", "(",
              new OneOperator4_<long, pmesh3, KN<double> *, KN<double> *, Matrice_Creuse<double> *>(isotropicStiffnessLower));
   Global.Add("tangentStiffness2D", "(",
-             new OneOperator3_<long, pmesh, KN<double> *, Matrice_Creuse<double> *>(tangentStiffness2D));
+             new OneOperator6_<long, pmesh, KN<double> *, KN<double> *, KN<double> *, KN<double> *, Matrice_Creuse<double> *>(
+                 tangentStiffness2D));
   Global.Add("internalForce2D", "(", new OneOperator3_<long, pmesh, KN<double> *, KN<double> *>(internalForce2D));
   Global.Add("p1DisplacementGradients", "(",
              new OneOperator3_<long, pmesh, KN<double> *, KN<double> *>(p1DisplacementGradients2D));
   Global.Add("p1DisplacementGradients", "(",
              new OneOperator3_<long, pmesh3, KN<double> *, KN<double> *>(p1DisplacementGradients3D));
-  Global.Add("nodalCoupling2D", "(",
-             new OneOperator5_<long, pmesh, KN<double> *, KN<double> *, KN<double> *, Matrice_Creuse<double> *>(nodalCoupling2D));
 }
 
 }  // namespace

@@ -923,8 +923,8 @@ def test_volumetric_derivatives():
     in 2D and 3D, penalty form and exact incompressibility, linear elasticity's nodal form, and the
     axisymmetric mode's energy (hoop stretch, 2 pi r measure) in every form.
     h = 1e-5 leaves ~1e-10..2e-9 (measured); bound 1e-8, as for the laws. In plane strain the
-    penalty's coupling from plugin/fast_assembly.cpp equals FreeFEM's products to 1e-12
-    (measured 1.6e-16)."""
+    tangent with the penalty's coupling from plugin/fast_assembly.cpp equals the varf plus
+    FreeFEM's products to 1e-12 (rounding)."""
     code, output, _ = run_driver("tests/fd_volumetric.edp", [], None)
     lines = [l for l in output.splitlines() if l.startswith("fd_volumetric case=")]
     check("fd_volumetric: 19 derivative checks ran", len(lines) == 19, f"{len(lines)} lines")
