@@ -29,9 +29,9 @@ convergence: deps
 	$(PYTHON) scripts/hertz_convergence.py --cases plane,circle_vertical,circle_linearized,circle_exact
 
 # timings: Hertz from 10k to 1M DOFs, the cost of contact, IPOPT against Newton, 3D, the
-# volumetric forms, two bodies: results/bench/BENCH.md (about 12 minutes)
+# volumetric forms, two bodies: results/bench/BENCH.md
 # PEERS=1: also DOLFINx's SNES-VI solve of the same Hertz meshes and FElupe on the O-ring
-# (installs python3-dolfinx, and FElupe in a venv; about 15 minutes)
+# (installs python3-dolfinx, and FElupe in a venv; 14 minutes in all on the 2-core machine)
 bench: deps
 	@if [ -n "$(PEERS)" ]; then bash scripts/install_deps.sh --peers; fi
 	$(PYTHON) scripts/bench.py $(if $(PEERS),--peers)
