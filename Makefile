@@ -46,38 +46,22 @@ workspace: deps
 	@test -n "$(DIR)" || { echo "error: give the folder: make workspace DIR=<folder>"; exit 2; }
 	@bash scripts/workspace.sh "$(DIR)"
 
-# Debian's packages, then the suite's plugins: plugin/contact_runtime.cpp, which freefem++.pref loads,
-# and the three that include/ loads where they are used
-PLUGINS = plugin/contact_runtime.so plugin/schur_condensation.so plugin/fast_assembly.so plugin/msh_loader.so \
-          plugin/vtu_writer.so
+# Debian's packages, then the suite's plugins (each plugin/<name>.cpp says what it is for):
+# contact_runtime, which freefem++.pref loads; schur_condensation (the condensed solve),
+# fast_assembly (the energy's matrices and forces), msh_loader (3D gmsh files) and vtu_writer (the
+# results' .vtu), which include/ loads where they are used
+PLUGIN_NAMES = contact_runtime schur_condensation fast_assembly msh_loader vtu_writer
+PLUGINS = $(PLUGIN_NAMES:%=plugin/%.so)
 deps:
 	@bash scripts/install_deps.sh
 	@$(MAKE) -s --no-print-directory $(PLUGINS)
 
-plugin/contact_runtime.so: plugin/contact_runtime.cpp
-	@cd plugin && ff-c++ contact_runtime.cpp > build.log 2>&1 || { cat build.log; exit 1; }
-	@rm -f plugin/contact_runtime.o
-
-# the condensed solve's MUMPS Schur complement (include/solve/condensed_solve.idp)
-plugin/schur_condensation.so: plugin/schur_condensation.cpp
-	@cd plugin && ff-c++ schur_condensation.cpp -I/usr/include/mumps_seq -ldmumps_seq -lmetis > build_schur.log 2>&1 || { cat build_schur.log; exit 1; }
-	@rm -f plugin/schur_condensation.o
-
-# linear elasticity's stiffness on P1 tetrahedra (include/body/elastic_energy.idp) and the nodal
-# penalty's coupling in plane strain (include/body/volumetric.idp)
-plugin/fast_assembly.so: plugin/fast_assembly.cpp
-	@cd plugin && ff-c++ fast_assembly.cpp > build_fast_assembly.log 2>&1 || { cat build_fast_assembly.log; exit 1; }
-	@rm -f plugin/fast_assembly.o
-
-# gmsh's msh 2.2 files read into a mesh3 with an odd number of vertices (include/mesh/gmsh_mesh.idp)
-plugin/msh_loader.so: plugin/msh_loader.cpp
-	@cd plugin && ff-c++ msh_loader.cpp > build_msh_loader.log 2>&1 || { cat build_msh_loader.log; exit 1; }
-	@rm -f plugin/msh_loader.o
-
-# the results' .vtu from the coefficient arrays (include/solver.idp)
-plugin/vtu_writer.so: plugin/vtu_writer.cpp
-	@cd plugin && ff-c++ vtu_writer.cpp > build_vtu_writer.log 2>&1 || { cat build_vtu_writer.log; exit 1; }
-	@rm -f plugin/vtu_writer.o
+# each with FreeFEM's ff-c++, its log in plugin/build_<name>.log; the Schur plugin links
+# Debian's sequential MUMPS and METIS
+FFCXX_FLAGS_schur_condensation = -I/usr/include/mumps_seq -ldmumps_seq -lmetis
+plugin/%.so: plugin/%.cpp
+	@cd plugin && ff-c++ $*.cpp $(FFCXX_FLAGS_$*) > build_$*.log 2>&1 || { cat build_$*.log; exit 1; }
+	@rm -f plugin/$*.o
 
 clean:
-	rm -rf results $(PLUGINS) plugin/build.log plugin/build_schur.log plugin/build_fast_assembly.log plugin/build_msh_loader.log plugin/build_vtu_writer.log
+	rm -rf results $(PLUGINS) $(PLUGIN_NAMES:%=plugin/build_%.log)
