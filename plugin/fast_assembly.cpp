@@ -299,51 +299,43 @@ long internalForce2D(pmesh const &pTh, KN<double> *const &pP, KN<double> *const 
   return 2 * nv;
 }
 
-long p1DisplacementGradients2D(pmesh const &pTh, KN<double> *const &pU, KN<double> *const &pG) {
+// the gradients of an element's barycentric coordinates, d per corner
+void elementGradients(const Mesh::Triangle &K, double g[3][2]) { barycentricGradients(K, g); }
+void elementGradients(const Tet &K, double g[4][3]) {
+  R3 G[4];
+  K.Gradlambda(G);
+  for (int a = 0; a < 4; a++) { g[a][0] = G[a].x; g[a][1] = G[a].y; g[a][2] = G[a].z; }
+}
+
+// du_i/dX_J on each element of a P1 mesh of dimension d (the 3 x 3 layout, 0 out of plane)
+template <class MeshType, int d>
+long p1DisplacementGradients(const MeshType *pTh, KN<double> *const &pU, KN<double> *const &pG) {
   ffassert(pTh);
-  const Mesh &Th = *pTh;
+  const MeshType &Th = *pTh;
   const KN<double> &U = *pU;
   const long nt = Th.nt;
-  ffassert(U.N() == 2 * Th.nv);
+  ffassert(U.N() == d * Th.nv);
   KN<double> &G = *pG;
   G.resize(9 * nt);
   G = 0.;
   for (long k = 0; k < nt; k++) {
-    const Mesh::Triangle &K = Th[k];
-    double g[3][2];
-    barycentricGradients(K, g);
-    for (int i = 0; i < 2; i++)
-      for (int J = 0; J < 2; J++) {
+    const auto &K = Th[k];
+    double g[d + 1][d];
+    elementGradients(K, g);
+    for (int i = 0; i < d; i++)
+      for (int J = 0; J < d; J++) {
         double sum = 0;
-        for (int a = 0; a < 3; a++) sum += U[2 * Th(K[a]) + i] * g[a][J];
+        for (int a = 0; a <= d; a++) sum += U[d * Th(K[a]) + i] * g[a][J];
         G[(3 * i + J) * nt + k] = sum;
       }
   }
   return 9 * nt;
 }
-
+long p1DisplacementGradients2D(pmesh const &pTh, KN<double> *const &pU, KN<double> *const &pG) {
+  return p1DisplacementGradients<Mesh, 2>(pTh, pU, pG);
+}
 long p1DisplacementGradients3D(pmesh3 const &pTh, KN<double> *const &pU, KN<double> *const &pG) {
-  ffassert(pTh);
-  const Mesh3 &Th = *pTh;
-  const KN<double> &U = *pU;
-  const long nt = Th.nt;
-  ffassert(U.N() == 3 * Th.nv);
-  KN<double> &G = *pG;
-  G.resize(9 * nt);
-  for (long k = 0; k < nt; k++) {
-    const Tet &K = Th[k];
-    R3 g[4];
-    K.Gradlambda(g);
-    for (int i = 0; i < 3; i++) {
-      double gx = 0, gy = 0, gz = 0;
-      for (int a = 0; a < 4; a++) {
-        const double u = U[3 * Th(K[a]) + i];
-        gx += u * g[a].x; gy += u * g[a].y; gz += u * g[a].z;
-      }
-      G[(3 * i) * nt + k] = gx; G[(3 * i + 1) * nt + k] = gy; G[(3 * i + 2) * nt + k] = gz;
-    }
-  }
-  return 9 * nt;
+  return p1DisplacementGradients<Mesh3, 3>(pTh, pU, pG);
 }
 
 void init() {

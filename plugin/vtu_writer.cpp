@@ -104,30 +104,28 @@ long writeFile(const std::string &file, long nv, long nt, int d, const std::vect
   return nt;
 }
 
-long writeVtu2D(string *const &file, pmesh const &pTh, KN<double> *const &pU, KN<double> *const &pCells,
+// the vertices' coordinates (z = 0 in 2D) and the elements' vertex numbers of a P1 mesh of dimension d
+double zOf(const Mesh::Vertex &) { return 0.; }
+double zOf(const Vertex3 &v) { return v.z; }
+template <class MeshType, int d>
+long writeVtuOf(string *const &file, const MeshType *pTh, KN<double> *const &pU, KN<double> *const &pCells,
                 string *const &names) {
   ffassert(pTh);
-  const Mesh &Th = *pTh;
-  std::vector<float> points(3 * Th.nv, 0.f);
-  for (long v = 0; v < Th.nv; v++) { points[3 * v] = float(Th(v).x); points[3 * v + 1] = float(Th(v).y); }
-  std::vector<int32_t> connectivity(3 * Th.nt);
-  for (long k = 0; k < Th.nt; k++)
-    for (int a = 0; a < 3; a++) connectivity[3 * k + a] = int32_t(Th(Th[k][a]));
-  return writeFile(*file, Th.nv, Th.nt, 2, points, connectivity, *pU, *pCells, *names);
-}
-
-long writeVtu3D(string *const &file, pmesh3 const &pTh, KN<double> *const &pU, KN<double> *const &pCells,
-                string *const &names) {
-  ffassert(pTh);
-  const Mesh3 &Th = *pTh;
+  const MeshType &Th = *pTh;
   std::vector<float> points(3 * Th.nv);
   for (long v = 0; v < Th.nv; v++) {
-    points[3 * v] = float(Th(v).x); points[3 * v + 1] = float(Th(v).y); points[3 * v + 2] = float(Th(v).z);
+    points[3 * v] = float(Th(v).x); points[3 * v + 1] = float(Th(v).y); points[3 * v + 2] = float(zOf(Th(v)));
   }
-  std::vector<int32_t> connectivity(4 * Th.nt);
+  std::vector<int32_t> connectivity((d + 1) * Th.nt);
   for (long k = 0; k < Th.nt; k++)
-    for (int a = 0; a < 4; a++) connectivity[4 * k + a] = int32_t(Th(Th[k][a]));
-  return writeFile(*file, Th.nv, Th.nt, 3, points, connectivity, *pU, *pCells, *names);
+    for (int a = 0; a <= d; a++) connectivity[(d + 1) * k + a] = int32_t(Th(Th[k][a]));
+  return writeFile(*file, Th.nv, Th.nt, d, points, connectivity, *pU, *pCells, *names);
+}
+long writeVtu2D(string *const &file, pmesh const &pTh, KN<double> *const &pU, KN<double> *const &pCells, string *const &names) {
+  return writeVtuOf<Mesh, 2>(file, pTh, pU, pCells, names);
+}
+long writeVtu3D(string *const &file, pmesh3 const &pTh, KN<double> *const &pU, KN<double> *const &pCells, string *const &names) {
+  return writeVtuOf<Mesh3, 3>(file, pTh, pU, pCells, names);
 }
 
 void init() {
