@@ -17,10 +17,18 @@
 //     (identity rows: the caller puts their values in the right-hand side) and the dofs schurDofs
 //     kept as the Schur block, which it returns dense in S. Returns MUMPS's INFOG(1) (0: success).
 //     Called again with the same pattern (a tangent at a new state), it keeps MUMPS's analysis.
+//     An empty schurDofs is a plain factorization (a problem without contact rows).
+//   schurIndefinite(yes): the next factorizations are LDL^T with pivoting (MUMPS SYM = 2) from the
+//     start, for a matrix known to be indefinite (the nodal form's saddle point matrix); else
+//     Cholesky first (SYM = 1), LDL^T when it fails.
+//   schurVariableNodes(nodes): the mesh vertex (graph node) of every unknown, for the ordering (the
+//     saddle point matrix's pressure and displacements at one vertex are one node: 2.9x the
+//     penalty form's factor entries when METIS saw them apart); empty: grouped automatically.
 //   schurReduce(b, g): g = the reduced right-hand side of b.
 //   schurExpand(b, Uc, U): U = the whole solution for the right-hand side b with U(schurDofs) = Uc.
 //   schurStatistics(stats): the last factorization's ordering, analysis and factorization times (s),
-//     entries in the factors and flops.
+//     entries in the factors, flops, and its negative pivots (MUMPS INFOG(12): the negative
+//     eigenvalues of the factorized matrix without its Schur block, by Sylvester's law of inertia).
 //   schurRelease(): frees MUMPS's factors.
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
@@ -40,7 +48,9 @@ struct Condensation {
   std::vector<double> values, schur, rhs, reduced;
   long n = 0, nSchur = 0;
   double analysisTime = 0;
-  double statistics[5] = {0, 0, 0, 0, 0};   // ordering s, analysis s, factorization s, factor entries, flops
+  double statistics[6] = {0, 0, 0, 0, 0, 0};   // ordering s, analysis s, factorization s, factor entries, flops, negative pivots
+  bool indefinite = false;   // LDL^T with pivoting from the start
+  std::vector<int> variableNodes;   // the caller's grouping of the variables into graph nodes
 
   void release() {
     if (!alive) return;
@@ -109,21 +119,30 @@ void nestedDissectionOrder(Condensation &c) {
     return rowFirst[i + 1] - rowFirst[i] == rowFirst[j + 1] - rowFirst[j]
            && std::equal(column.begin() + rowFirst[i], column.begin() + rowFirst[i + 1], column.begin() + rowFirst[j]);
   };
-  std::vector<int> node(n);   // variable -> node
-  std::vector<long> first;    // node -> its first variable
-  for (long i = 0; i < n; i++) {
-    if (i > 0 && sameRow(i, i - 1)) node[i] = node[i - 1];
-    else { node[i] = int(first.size()); first.push_back(i); }
+  // variable -> node: the caller's grouping (schurVariableNodes), else consecutive variables with
+  // the same row (a vector field's components at one node)
+  std::vector<int> node(n);
+  long nodes = 0;
+  if ((long)c.variableNodes.size() == n) {
+    for (long i = 0; i < n; i++) { node[i] = c.variableNodes[i]; nodes = std::max(nodes, long(node[i]) + 1); }
+  } else {
+    for (long i = 0; i < n; i++) node[i] = (i > 0 && sameRow(i, i - 1)) ? node[i - 1] : int(nodes++);
   }
-  long nodes = first.size();
+  std::vector<long> memberStart(nodes + 1, 0);   // node -> its variables, in compressed rows
+  for (long i = 0; i < n; i++) memberStart[node[i] + 1]++;
+  for (long v = 0; v < nodes; v++) memberStart[v + 1] += memberStart[v];
+  std::vector<long> member(n), memberFill(memberStart.begin(), memberStart.end() - 1);
+  for (long i = 0; i < n; i++) member[memberFill[node[i]]++] = i;
   std::vector<idx_t> xadj(nodes + 1, 0), adjncy;
   adjncy.reserve(kept/2);
   std::vector<long> seen(nodes, -1);
   for (long v = 0; v < nodes; v++) {
-    long i = first[v];
-    for (long k = rowFirst[i]; k < rowFirst[i + 1]; k++) {
-      int w = node[column[k]];
-      if (w != v && seen[w] != v) { seen[w] = v; adjncy.push_back(w); }
+    for (long m = memberStart[v]; m < memberStart[v + 1]; m++) {
+      long i = member[m];
+      for (long k = rowFirst[i]; k < rowFirst[i + 1]; k++) {
+        int w = node[column[k]];
+        if (w != v && seen[w] != v) { seen[w] = v; adjncy.push_back(w); }
+      }
     }
     xadj[v + 1] = adjncy.size();
   }
@@ -141,8 +160,8 @@ void nestedDissectionOrder(Condensation &c) {
   c.pivotOrder.assign(n, 0);
   int position = 0;
   for (long k = 0; k < nodes; k++)
-    for (long i = first[permutation[k]]; i < n && node[i] == permutation[k]; i++)
-      if (!inSchur[i]) c.pivotOrder[i] = ++position;
+    for (long m = memberStart[permutation[k]]; m < memberStart[permutation[k] + 1]; m++)
+      if (!inSchur[member[m]]) c.pivotOrder[member[m]] = ++position;
   for (int v : c.schurList) c.pivotOrder[v - 1] = ++position;
 }
 }
@@ -162,10 +181,12 @@ static int factorWith(Condensation &c, int sym) {
   id.n = int(c.n);
   id.nnz = (MUMPS_INT8)c.values.size();
   id.irn = c.rows.data(); id.jcn = c.columns.data(); id.a = c.values.data();
-  id.icntl[18] = 1;            // ICNTL(19): the Schur complement, centralized
-  id.size_schur = int(c.nSchur);
-  id.listvar_schur = c.schurList.data();
-  id.schur = c.schur.data();
+  if (c.nSchur > 0) {
+    id.icntl[18] = 1;          // ICNTL(19): the Schur complement, centralized
+    id.size_schur = int(c.nSchur);
+    id.listvar_schur = c.schurList.data();
+    id.schur = c.schur.data();
+  }
   id.perm_in = c.pivotOrder.data();
   id.icntl[6] = 1;             // ICNTL(7): the pivot order given in PERM_IN
   double t0 = clockNow();
@@ -189,7 +210,7 @@ static long schurFactor(Matrice_Creuse<double> *const &pK, KN<double> *const &pF
   const KN<double> &fixed = *pFixed;
   const KN<long> &schurDofs = *pSchur;
   long n = K->n, nSchur = schurDofs.N();
-  ffassert(fixed.N() == n && nSchur > 0 && nSchur < n);
+  ffassert(fixed.N() == n && nSchur >= 0 && nSchur < n);
   Condensation &c = condensation;
   // the lower triangle of K on the free dofs (1-based), then 1 on each fixed dof's diagonal
   std::vector<int> rows, columns, schurList(nSchur);
@@ -213,7 +234,7 @@ static long schurFactor(Matrice_Creuse<double> *const &pK, KN<double> *const &pF
   // the same pattern as the last factorization (a tangent at a new state): new values, MUMPS's
   // analysis kept (O-ring plates, 1146 dofs: 11 ms -> ms per condensation)
   bool samePattern = c.alive && c.n == n && c.nSchur == nSchur && schurList == c.schurList && rows == c.rows
-                     && columns == c.columns;
+                     && columns == c.columns && !(c.indefinite && c.id.sym == 1);
   c.values.swap(values);
   if (samePattern) {
     c.analysisTime = 0;
@@ -233,7 +254,7 @@ static long schurFactor(Matrice_Creuse<double> *const &pK, KN<double> *const &pF
     t1 = clockNow();
     // Cholesky (sym = 1) when K_ii is positive definite: 5.5 s against 8.7 s for LDL^T with pivoting
     // (sym = 2) on the 67k-dof 3D sphere; LDL^T when it is not (a body left free by its rows)
-    info = factorWith(c, 1);
+    info = c.indefinite ? -1 : factorWith(c, 1);
     if (info < 0) info = factorWith(c, 2);
   }
   double t3 = clockNow();
@@ -241,6 +262,7 @@ static long schurFactor(Matrice_Creuse<double> *const &pK, KN<double> *const &pF
   c.statistics[0] = t1 - t0; c.statistics[1] = c.analysisTime; c.statistics[2] = t3 - t1 - c.analysisTime;
   c.statistics[3] = double(id.infog[28]);   // INFOG(29): entries in the factors
   c.statistics[4] = id.rinfog[2];          // RINFOG(3): flops of the elimination
+  c.statistics[5] = double(id.infog[11]);  // INFOG(12): negative pivots
   if (info < 0) return info;
   // a symmetric matrix's Schur block comes back as its lower triangle by rows (ICNTL(19) = 1);
   // the other holds MUMPS's workspace, not zeros
@@ -254,9 +276,10 @@ static long schurFactor(Matrice_Creuse<double> *const &pK, KN<double> *const &pF
 static long schurReduce(KN<double> *const &pb, KN<double> *const &pg) {
   Condensation &c = condensation;
   ffassert(c.alive && pb->N() == c.n);
+  pg->resize(c.nSchur);
+  if (c.nSchur == 0) return 0;
   int info = c.solvePhase(*pb, 1);
   if (info < 0) return info;
-  pg->resize(c.nSchur);
   for (long s = 0; s < c.nSchur; s++) (*pg)[s] = c.reduced[s];
   return 0;
 }
@@ -265,7 +288,7 @@ static long schurExpand(KN<double> *const &pb, KN<double> *const &pUc, KN<double
   Condensation &c = condensation;
   ffassert(c.alive && pb->N() == c.n && pUc->N() == c.nSchur);
   for (long s = 0; s < c.nSchur; s++) c.reduced[s] = (*pUc)[s];
-  int info = c.solvePhase(*pb, 2);
+  int info = c.solvePhase(*pb, c.nSchur > 0 ? 2 : 0);
   if (info < 0) return info;
   pU->resize(c.n);
   for (long k = 0; k < c.n; k++) (*pU)[k] = c.rhs[k];
@@ -273,10 +296,27 @@ static long schurExpand(KN<double> *const &pb, KN<double> *const &pUc, KN<double
   return 0;
 }
 
-// [ordering s, analysis s, factorization s, entries in the factors, flops] of the last schurFactor
+// [ordering s, analysis s, factorization s, entries in the factors, flops, negative pivots] of the
+// last schurFactor
 static long schurStatistics(KN<double> *const &pStatistics) {
-  pStatistics->resize(5);
-  for (int k = 0; k < 5; k++) (*pStatistics)[k] = condensation.statistics[k];
+  pStatistics->resize(6);
+  for (int k = 0; k < 6; k++) (*pStatistics)[k] = condensation.statistics[k];
+  return 0;
+}
+
+static long schurIndefinite(const bool &yes) {
+  condensation.indefinite = yes;
+  return 0;
+}
+
+// The graph node of every variable for the nested dissection (empty: grouped automatically).
+static long schurVariableNodes(KN<long> *const &pNodes) {
+  const KN<long> &nodes = *pNodes;
+  condensation.variableNodes.assign(nodes.N(), 0);
+  for (long i = 0; i < nodes.N(); i++) {
+    ffassert(nodes[i] >= 0);
+    condensation.variableNodes[i] = int(nodes[i]);
+  }
   return 0;
 }
 
@@ -290,6 +330,8 @@ static void init() {
   Global.Add("schurReduce", "(", new OneOperator2_<long, KN<double> *, KN<double> *>(schurReduce));
   Global.Add("schurExpand", "(", new OneOperator3_<long, KN<double> *, KN<double> *, KN<double> *>(schurExpand));
   Global.Add("schurStatistics", "(", new OneOperator1_<long, KN<double> *>(schurStatistics));
+  Global.Add("schurIndefinite", "(", new OneOperator1_<long, bool>(schurIndefinite));
+  Global.Add("schurVariableNodes", "(", new OneOperator1_<long, KN<long> *>(schurVariableNodes));
   Global.Add("schurRelease", "(", new OneOperator0<long>(schurRelease));
 }
 
