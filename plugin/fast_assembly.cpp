@@ -17,7 +17,9 @@
 //    element of volume V whose barycentric coordinates have the gradients g:
 //      V (lambda g_a[i] g_b[j] + mu (g_a[j] g_b[i] + delta_ij g_a . g_b)).
 // 2. tangentStiffness2D(Th, A, cofactors, nodalVolume, weights, K): a hyperelastic law's tangent on
-//    P1 triangles in plane strain, int Grad v : A : Grad w (the varf vStiffness with one-point
+//    P1 triangles in plane strain (16 arrays A, 4 cofactors) or in the axisymmetric mode (25 and 5:
+//    the hoop component F_thth = 1 + u_r / r at the barycentre, 1 / (3 r_c) per radial dof, and the
+//    measure 2 pi r_c |T|), int Grad v : A : Grad w (the varf vStiffness with one-point
 //    quadrature, exact since A is constant per element): entry (a i, b k) is
 //    |T| sum_JL A_(iJ)(kL) g_a[J] g_b[L]. A the 16 P0 arrays of the in-plane component pairs one
 //    after the other, pair (iJ, kL) at (4 (2 i + J) + 2 k + L) nt. With weights (one per vertex;
@@ -33,13 +35,27 @@
 //    solve at 4360 dofs went from 9.6 s to 8.3 s (94 tangents; medians of 3).
 // 3. internalForce2D(Th, P, f): the internal forces int P : Grad v on P1 triangles in plane strain
 //    (the varf vInternalForce): f[2 a + i] = sum over the triangles of a of |T| sum_J P_iJ g_a[J],
-//    P the 4 P0 arrays P_11, P_12, P_21, P_22 one after the other.
+//    P the 4 P0 arrays P_11, P_12, P_21, P_22 one after the other (axisymmetric: 5, with P_thth).
 // 4. p1DisplacementGradients(Th, U, G): grad u on each P1 triangle or tetrahedron, u the field of
 //    dof vector U ([P1, P1] or [P1, P1, P1]: dof d v + c): G[(3 i + J) nt + k] = du_i/dX_J on
 //    element k (the 3 x 3 layout of the deformation gradient; the out-of-plane entries of a
 //    triangle are 0). FreeFEM interpolates each component into P0 through its finite-element
 //    machinery: 1.8 s for the 9 of the 3D sphere's 391k tetrahedra.
-// They return the number of entries stored (1, 2) or of values (3, 4).
+// 5. tangentStiffness3D(Th, A, K): tangentStiffness2D's tangent on P1 tetrahedra, without the
+//    coupling: A the 81 P0 arrays of the component pairs (iJ, kL) at (9 (3 i + J) + 3 k + L) nt, K
+//    the whole matrix in the numbering of [P1, P1, P1] (dof 3 v + c). The varf vStiffness took
+//    0.19 s at 12,825 dofs (FreeFEM evaluating its 81-field integrand at each tetrahedron).
+// 6. internalForce3D(Th, P, f): internalForce2D on P1 tetrahedra, P the 9 P0 arrays P_iJ.
+// 7. nodalSaddle3D(Th, A, cofactors, nodalVolume, compliance, M, diagonal): the nodal volumetric
+//    form's tangent as its saddle point matrix (include/body/volumetric.idp, volumetricSaddle), on
+//    P1 tetrahedra: [K_el, R^T; R, -diag(compliance)] with K_el the tangent of 5 and R = Q C, row n
+//    sum over the tetrahedra T of vertex n of |T| / 4 dJ_T/dU, dJ_T/du_(b,i) = sum_j cof(F_T)_ij
+//    g_b[j] (cofactors the 9 P0 arrays of cof F, compliance V_n / K_n per vertex): 3 nv + nv
+//    unknowns, the pressure of vertex n last (3 nv + n). diagonal receives the diagonal of the
+//    tangent it stands for, K_el + R^T diag(1 / compliance) R, on the 3 nv displacement dofs (the
+//    condensed SQP shifts an indefinite tangent relative to it). At 12,825 dofs FreeFEM's varf,
+//    sparse products and block matrix took 0.66 s a tangent.
+// They return the number of entries stored (1, 2, 5, 7) or of values (3, 4, 6).
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
 #include <algorithm>
@@ -129,8 +145,7 @@ long isotropicStiffnessLower(pmesh3 const &pTh, KN<double> *const &pLambda, KN<d
   ffassert(e == entries);
   HashMatrix<int, double> *K = new HashMatrix<int, double>(int(n), int(n), 0, 1);
   K->set(int(n), int(n), 1, size_t(entries), rows.data(), columns.data(), values.data());
-  pK->init();
-  pK->A.master(K);
+  pK->A.master(K);   // (master frees the matrix held before; init() would only forget it: 16 MB a tangent at 12,825 dofs)
   pK->typemat = 0;
   return entries;
 }
@@ -144,15 +159,39 @@ void barycentricGradients(const Mesh::Triangle &K, double g[3][2]) {
   g[0][0] = -g[1][0] - g[2][0];  g[0][1] = -g[1][1] - g[2][1];
 }
 
+// The element's map from its corner dofs to the active components of F (plane strain: F_11, F_12,
+// F_21, F_22; axisymmetric also F_thth = 1 + u_r / r, whose derivative at the barycentre is
+// 1 / (3 r_c) for the radial dof of every corner), and its measure (|T|, or 2 pi r_c |T|).
+struct TriangleMap {
+  double g[3][2];
+  double weight = 0, hoop = 0;   // the measure, and dF_thth/du_(a,r) (axisymmetric)
+  void set(const Mesh::Triangle &K, bool axisymmetric) {
+    barycentricGradients(K, g);
+    weight = K.area;
+    if (axisymmetric) {
+      const double rc = (K[0].x + K[1].x + K[2].x) / 3;
+      weight *= 2 * M_PI * rc;
+      hoop = 1 / (3 * rc);
+    }
+  }
+  // dF_alpha/du_(a,i) for the active component alpha (0..3: 2 I + J; 4: the hoop)
+  double operator()(int alpha, int a, int i) const {
+    if (alpha == 4) return i == 0 ? hoop : 0.;
+    return (alpha / 2 == i) ? g[a][alpha % 2] : 0.;
+  }
+};
+
 long tangentStiffness2D(pmesh const &pTh, KN<double> *const &pA, KN<double> *const &pCofactors,
                         KN<double> *const &pNodalVolume, KN<double> *const &pWeights, Matrice_Creuse<double> *const &pK) {
   ffassert(pTh);
   const Mesh &Th = *pTh;
   const KN<double> &A = *pA, &cofactors = *pCofactors, &nodalVolume = *pNodalVolume, &weights = *pWeights;
   const long nv = Th.nv, nt = Th.nt;
-  ffassert(A.N() == 16 * nt);
+  const bool axisymmetric = A.N() == 25 * nt;
+  const int na = axisymmetric ? 5 : 4;   // active components of F
+  ffassert(A.N() == na * na * nt);
   const bool coupled = weights.N() > 0;
-  ffassert(!coupled || (cofactors.N() == 4 * nt && nodalVolume.N() == nv && weights.N() == nv));
+  ffassert(!coupled || (cofactors.N() == na * nt && nodalVolume.N() == nv && weights.N() == nv));
   // the triangles of each vertex
   std::vector<long> first(nv + 1, 0);
   for (long k = 0; k < nt; k++)
@@ -208,12 +247,12 @@ long tangentStiffness2D(pmesh const &pTh, KN<double> *const &pA, KN<double> *con
   // the 2 x 2 blocks of the vertex pairs: the tangent summed over the triangles
   std::vector<double> block(4 * pairs, 0.);
   std::vector<double> derivative(coupled ? 6 * nt : 0);   // |T| / 3 dJ_T/du on T's 6 dofs
+  TriangleMap map;
   for (long k = 0; k < nt; k++) {
     const Mesh::Triangle &K = Th[k];
-    double g[3][2];
-    barycentricGradients(K, g);
-    double a16[16];
-    for (int r = 0; r < 16; r++) a16[r] = K.area * A[r * nt + k];
+    map.set(K, axisymmetric);
+    double a25[25];
+    for (int r = 0; r < na * na; r++) a25[r] = map.weight * A[r * nt + k];
     for (int p = 0; p < 3; p++) {
       long a = Th(K[p]);
       for (int q = 0; q < 3; q++) {
@@ -221,18 +260,22 @@ long tangentStiffness2D(pmesh const &pTh, KN<double> *const &pA, KN<double> *con
         for (int i = 0; i < 2; i++)
           for (int c = 0; c < 2; c++) {
             double sum = 0;
-            for (int J = 0; J < 2; J++)
-              for (int L = 0; L < 2; L++) sum += a16[4 * (2 * i + J) + 2 * c + L] * g[p][J] * g[q][L];
+            for (int alpha = 0; alpha < na; alpha++) {
+              const double left = map(alpha, p, i);
+              if (left == 0) continue;
+              for (int beta = 0; beta < na; beta++) sum += a25[na * alpha + beta] * left * map(beta, q, c);
+            }
             B[2 * i + c] += sum;
           }
       }
     }
-    if (coupled) {
-      const double cof[2][2] = {{cofactors[k], cofactors[nt + k]}, {cofactors[2 * nt + k], cofactors[3 * nt + k]}};
+    if (coupled)
       for (int p = 0; p < 3; p++)
-        for (int i = 0; i < 2; i++)
-          derivative[6 * k + 2 * p + i] = K.area / 3 * (cof[i][0] * g[p][0] + cof[i][1] * g[p][1]);
-    }
+        for (int i = 0; i < 2; i++) {
+          double dJ = 0;
+          for (int alpha = 0; alpha < na; alpha++) dJ += cofactors[alpha * nt + k] * map(alpha, p, i);
+          derivative[6 * k + 2 * p + i] = map.weight / 3 * dJ;
+        }
   }
   // the nodal penalty's coupling: row n of P C on n's patch, its weighted outer product
   if (coupled) {
@@ -271,8 +314,7 @@ long tangentStiffness2D(pmesh const &pTh, KN<double> *const &pA, KN<double> *con
         }
   HashMatrix<int, double> *K = new HashMatrix<int, double>(int(n), int(n), 0, 0);
   K->set(int(n), int(n), 0, size_t(entries), rows.data(), columns.data(), values.data());
-  pK->init();
-  pK->A.master(K);
+  pK->A.master(K);   // (master frees the matrix held before; init() would only forget it: 16 MB a tangent at 12,825 dofs)
   pK->typemat = 0;
   return entries;
 }
@@ -282,18 +324,23 @@ long internalForce2D(pmesh const &pTh, KN<double> *const &pP, KN<double> *const 
   const Mesh &Th = *pTh;
   const KN<double> &P = *pP;
   const long nv = Th.nv, nt = Th.nt;
-  ffassert(P.N() == 4 * nt);
+  const bool axisymmetric = P.N() == 5 * nt;
+  const int na = axisymmetric ? 5 : 4;
+  ffassert(P.N() == na * nt);
   KN<double> &f = *pf;
   f.resize(2 * nv);
   f = 0.;
+  TriangleMap map;
   for (long k = 0; k < nt; k++) {
     const Mesh::Triangle &K = Th[k];
-    double g[3][2];
-    barycentricGradients(K, g);
-    const double p[4] = {P[k], P[nt + k], P[2 * nt + k], P[3 * nt + k]};
+    map.set(K, axisymmetric);
     for (int a = 0; a < 3; a++) {
       long v = Th(K[a]);
-      for (int i = 0; i < 2; i++) f[2 * v + i] += K.area * (p[2 * i] * g[a][0] + p[2 * i + 1] * g[a][1]);
+      for (int i = 0; i < 2; i++) {
+        double sum = 0;
+        for (int alpha = 0; alpha < na; alpha++) sum += P[alpha * nt + k] * map(alpha, a, i);
+        f[2 * v + i] += map.weight * sum;
+      }
     }
   }
   return 2 * nv;
@@ -338,6 +385,189 @@ long p1DisplacementGradients3D(pmesh3 const &pTh, KN<double> *const &pU, KN<doub
   return p1DisplacementGradients<Mesh3, 3>(pTh, pU, pG);
 }
 
+
+// The sorted vertex neighbours of every vertex of a tetrahedral mesh (itself included), in
+// compressed rows: the vertex pairs that share a tetrahedron.
+void tetVertexPattern(const Mesh3 &Th, std::vector<long> &rowStart, std::vector<int> &neighbour) {
+  const long nv = Th.nv, nt = Th.nt;
+  std::vector<long> start(nv + 1, 0);
+  for (long k = 0; k < nt; k++)
+    for (int p = 0; p < 4; p++) start[Th(Th[k][p]) + 1] += 4;
+  for (long a = 0; a < nv; a++) start[a + 1] += start[a];
+  neighbour.assign(start[nv], 0);
+  {
+    std::vector<long> fill(start.begin(), start.end() - 1);
+    for (long k = 0; k < nt; k++)
+      for (int p = 0; p < 4; p++)
+        for (int q = 0; q < 4; q++) neighbour[fill[Th(Th[k][p])]++] = int(Th(Th[k][q]));
+  }
+  rowStart.assign(nv + 1, 0);
+  long pairs = 0;
+  for (long a = 0; a < nv; a++) {
+    std::sort(neighbour.begin() + start[a], neighbour.begin() + start[a + 1]);
+    rowStart[a] = pairs;
+    for (long m = start[a]; m < start[a + 1]; m++)
+      if (m == start[a] || neighbour[m] != neighbour[m - 1]) neighbour[pairs++] = neighbour[m];
+  }
+  rowStart[nv] = pairs;
+  neighbour.resize(pairs);
+}
+
+// The 3 x 3 tangent blocks of the vertex pairs summed over the tetrahedra, from the 81 arrays A.
+void tetTangentBlocks(const Mesh3 &Th, const KN<double> &A, const std::vector<long> &rowStart,
+                      const std::vector<int> &neighbour, std::vector<double> &block) {
+  const long nt = Th.nt;
+  block.assign(9 * neighbour.size(), 0.);
+  for (long k = 0; k < nt; k++) {
+    const Tet &K = Th[k];
+    double g[4][3];
+    elementGradients(K, g);
+    const double volume = K.mesure();
+    double a81[81];
+    for (int r = 0; r < 81; r++) a81[r] = volume * A[r * nt + k];
+    for (int p = 0; p < 4; p++) {
+      long a = Th(K[p]);
+      // h[(3 i + k) 3 + L] = sum_J A_(iJ)(kL) g_a[J]: the row half of the product, once per corner
+      double h[27];
+      for (int i = 0; i < 3; i++)
+        for (int c = 0; c < 3; c++)
+          for (int L = 0; L < 3; L++) {
+            double sum = 0;
+            for (int J = 0; J < 3; J++) sum += a81[9 * (3 * i + J) + 3 * c + L] * g[p][J];
+            h[(3 * i + c) * 3 + L] = sum;
+          }
+      for (int q = 0; q < 4; q++) {
+        long b = Th(K[q]);
+        long where = std::lower_bound(neighbour.begin() + rowStart[a], neighbour.begin() + rowStart[a + 1], int(b)) - neighbour.begin();
+        double *B = &block[9 * where];
+        for (int i = 0; i < 3; i++)
+          for (int c = 0; c < 3; c++)
+            B[3 * i + c] += h[(3 * i + c) * 3] * g[q][0] + h[(3 * i + c) * 3 + 1] * g[q][1] + h[(3 * i + c) * 3 + 2] * g[q][2];
+      }
+    }
+  }
+}
+
+long tangentStiffness3D(pmesh3 const &pTh, KN<double> *const &pA, Matrice_Creuse<double> *const &pK) {
+  ffassert(pTh);
+  const Mesh3 &Th = *pTh;
+  const KN<double> &A = *pA;
+  const long nv = Th.nv;
+  ffassert(A.N() == 81 * Th.nt);
+  std::vector<long> rowStart;
+  std::vector<int> neighbour;
+  tetVertexPattern(Th, rowStart, neighbour);
+  std::vector<double> block;
+  tetTangentBlocks(Th, A, rowStart, neighbour, block);
+  long n = 3 * nv, entries = 9 * long(neighbour.size());
+  std::vector<int> rows(entries), columns(entries);
+  std::vector<double> values(entries);
+  long e = 0;
+  for (long a = 0; a < nv; a++)
+    for (int i = 0; i < 3; i++)
+      for (long w = rowStart[a]; w < rowStart[a + 1]; w++)
+        for (int c = 0; c < 3; c++) {
+          rows[e] = int(3 * a + i);
+          columns[e] = int(3 * neighbour[w] + c);
+          values[e] = block[9 * w + 3 * i + c];
+          e++;
+        }
+  HashMatrix<int, double> *K = new HashMatrix<int, double>(int(n), int(n), 0, 0);
+  K->set(int(n), int(n), 0, size_t(entries), rows.data(), columns.data(), values.data());
+  pK->A.master(K);   // (master frees the matrix held before; init() would only forget it: 16 MB a tangent at 12,825 dofs)
+  pK->typemat = 0;
+  return entries;
+}
+
+long internalForce3D(pmesh3 const &pTh, KN<double> *const &pP, KN<double> *const &pf) {
+  ffassert(pTh);
+  const Mesh3 &Th = *pTh;
+  const KN<double> &P = *pP;
+  const long nv = Th.nv, nt = Th.nt;
+  ffassert(P.N() == 9 * nt);
+  KN<double> &f = *pf;
+  f.resize(3 * nv);
+  f = 0.;
+  for (long k = 0; k < nt; k++) {
+    const Tet &K = Th[k];
+    double g[4][3];
+    elementGradients(K, g);
+    const double volume = K.mesure();
+    for (int a = 0; a < 4; a++) {
+      long v = Th(K[a]);
+      for (int i = 0; i < 3; i++)
+        f[3 * v + i] += volume * (P[(3 * i) * nt + k] * g[a][0] + P[(3 * i + 1) * nt + k] * g[a][1] + P[(3 * i + 2) * nt + k] * g[a][2]);
+    }
+  }
+  return 3 * nv;
+}
+
+long nodalSaddle3D(pmesh3 const &pTh, KN<double> *const &pA, KN<double> *const &pCofactors, KN<double> *const &pNodalVolume,
+                   KN<double> *const &pCompliance, Matrice_Creuse<double> *const &pM, KN<double> *const &pDiagonal) {
+  ffassert(pTh);
+  const Mesh3 &Th = *pTh;
+  const KN<double> &A = *pA, &cofactors = *pCofactors, &nodalVolume = *pNodalVolume, &compliance = *pCompliance;
+  const long nv = Th.nv, nt = Th.nt;
+  ffassert(A.N() == 81 * nt && cofactors.N() == 9 * nt && nodalVolume.N() == nv && compliance.N() == nv);
+  std::vector<long> rowStart;
+  std::vector<int> neighbour;
+  tetVertexPattern(Th, rowStart, neighbour);
+  std::vector<double> block;
+  tetTangentBlocks(Th, A, rowStart, neighbour, block);
+  // R: for the pair (n, b) of the pattern, the 3 entries of row n on vertex b's dofs
+  std::vector<double> rcoef(3 * neighbour.size(), 0.);
+  for (long k = 0; k < nt; k++) {
+    const Tet &K = Th[k];
+    double g[4][3];
+    elementGradients(K, g);
+    const double quarter = K.mesure() / 4;
+    double cof[3][3];
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++) cof[i][j] = cofactors[(3 * i + j) * nt + k];
+    for (int p = 0; p < 4; p++) {
+      long n = Th(K[p]);
+      for (int q = 0; q < 4; q++) {
+        long b = Th(K[q]);
+        long where = std::lower_bound(neighbour.begin() + rowStart[n], neighbour.begin() + rowStart[n + 1], int(b)) - neighbour.begin();
+        for (int i = 0; i < 3; i++)
+          rcoef[3 * where + i] += quarter * (cof[i][0] * g[q][0] + cof[i][1] * g[q][1] + cof[i][2] * g[q][2]);
+      }
+    }
+  }
+  KN<double> &diagonal = *pDiagonal;
+  diagonal.resize(3 * nv);
+  for (long a = 0; a < nv; a++) {
+    long self = std::lower_bound(neighbour.begin() + rowStart[a], neighbour.begin() + rowStart[a + 1], int(a)) - neighbour.begin();
+    for (int i = 0; i < 3; i++) diagonal[3 * a + i] = block[9 * self + 4 * i];
+  }
+  for (long n = 0; n < nv; n++)
+    for (long w = rowStart[n]; w < rowStart[n + 1]; w++)
+      for (int i = 0; i < 3; i++) diagonal[3 * neighbour[w] + i] += rcoef[3 * w + i] * rcoef[3 * w + i] / compliance[n];
+  const long pairs = long(neighbour.size()), size = 4 * nv, entries = 9 * pairs + 6 * pairs + nv;
+  std::vector<int> rows(entries), columns(entries);
+  std::vector<double> values(entries);
+  long e = 0;
+  for (long a = 0; a < nv; a++)
+    for (long w = rowStart[a]; w < rowStart[a + 1]; w++) {
+      const long b = neighbour[w];
+      for (int i = 0; i < 3; i++)
+        for (int c = 0; c < 3; c++) {
+          rows[e] = int(3 * a + i); columns[e] = int(3 * b + c); values[e] = block[9 * w + 3 * i + c]; e++;
+        }
+      for (int i = 0; i < 3; i++) {   // R (row 3 nv + a, column 3 b + i) and its transpose
+        rows[e] = int(3 * nv + a); columns[e] = int(3 * b + i); values[e] = rcoef[3 * w + i]; e++;
+        rows[e] = int(3 * b + i); columns[e] = int(3 * nv + a); values[e] = rcoef[3 * w + i]; e++;
+      }
+    }
+  for (long n = 0; n < nv; n++) { rows[e] = int(3 * nv + n); columns[e] = int(3 * nv + n); values[e] = -compliance[n]; e++; }
+  ffassert(e == entries);
+  HashMatrix<int, double> *M = new HashMatrix<int, double>(int(size), int(size), 0, 0);
+  M->set(int(size), int(size), 0, size_t(entries), rows.data(), columns.data(), values.data());
+  pM->A.master(M);
+  pM->typemat = 0;
+  return entries;
+}
+
 void init() {
   Global.Add("isotropicStiffnessLower", "(",
              new OneOperator4_<long, pmesh3, KN<double> *, KN<double> *, Matrice_Creuse<double> *>(isotropicStiffnessLower));
@@ -345,6 +575,11 @@ void init() {
              new OneOperator6_<long, pmesh, KN<double> *, KN<double> *, KN<double> *, KN<double> *, Matrice_Creuse<double> *>(
                  tangentStiffness2D));
   Global.Add("internalForce2D", "(", new OneOperator3_<long, pmesh, KN<double> *, KN<double> *>(internalForce2D));
+  Global.Add("tangentStiffness3D", "(", new OneOperator3_<long, pmesh3, KN<double> *, Matrice_Creuse<double> *>(tangentStiffness3D));
+  Global.Add("internalForce3D", "(", new OneOperator3_<long, pmesh3, KN<double> *, KN<double> *>(internalForce3D));
+  Global.Add("nodalSaddle3D", "(",
+             new OneOperator7_<long, pmesh3, KN<double> *, KN<double> *, KN<double> *, KN<double> *, Matrice_Creuse<double> *, KN<double> *>(
+                 nodalSaddle3D));
   Global.Add("p1DisplacementGradients", "(",
              new OneOperator3_<long, pmesh, KN<double> *, KN<double> *>(p1DisplacementGradients2D));
   Global.Add("p1DisplacementGradients", "(",

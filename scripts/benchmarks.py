@@ -35,4 +35,7 @@ BENCHMARKS = [
     ("oring_flange_soft", "benchmarks/oring_flange.edp", ["-Ef", "40", "-nuf", "0.45", "-steps", "5"]),
     ("sliding_disc", "benchmarks/sliding_disc.edp", []),
     ("hertz_plane_nu0.4999", "benchmarks/hertz_plane.edp", ["-volumetric", "nodal", "-nu", "0.4999"]),
+    ("indentation_axi", "benchmarks/indentation.edp", ["-dim", "axi"]),
+    ("indentation_3d", "benchmarks/indentation.edp", ["-dim", "3"]),
+    ("cube_2d_mooney_platen", "benchmarks/cube.edp", ["-material", "mooney", "-load", "platen", "-compression", "0.35", "-steps", "4"]),
 ]

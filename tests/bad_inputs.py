@@ -15,6 +15,7 @@ SPHERE, CLAMPED, ORING = "benchmarks/hertz_sphere.edp", "benchmarks/clamped_squa
 PLATEN, TUBE, TORUS = "benchmarks/platen_block.edp", "benchmarks/rivlin_tube.edp", "benchmarks/oring_torus.edp"
 CYLINDERS, SPHERES = "benchmarks/hertz_two_cylinders.edp", "benchmarks/hertz_two_spheres.edp"
 FLANGE, SLIDING = "benchmarks/oring_flange.edp", "benchmarks/sliding_disc.edp"
+INDENTATION = "benchmarks/indentation.edp"
 
 # (driver, arguments ({tmp} is a scratch folder holding the files of make_files), the word the
 # error line must contain)
@@ -76,6 +77,14 @@ CASES = [
     (FLANGE, ["-C10", "0"], "-C10"),
     (FLANGE, ["-cmax", "1.2"], "-cmax"),
     (FLANGE, ["-constraint", "finite"], "-constraint"),
+    (INDENTATION, ["-dim", "2"], "-dim"),
+    (INDENTATION, ["-block", "2"], "-block"),
+    (INDENTATION, ["-depth", "0.8"], "-depth"),
+    (INDENTATION, ["-h", "0.5"], "-h"),
+    (INDENTATION, ["-nu", "0.5", "-volumetric", "penalty"], "-nu"),
+    (CUBE, ["-compression", "0.2", "-pressure", "3"], "-compression"),
+    (CUBE, ["-load", "dead"], "-load"),
+    (CUBE, ["-perturb", "0.5"], "-perturb"),
     (SLIDING, ["-E1", "0"], "-E1"),
     (SLIDING, ["-nu", "0.5"], "-nu"),
     (SLIDING, ["-press", "0.1"], "-press"),
