@@ -14,8 +14,12 @@ Studies (timings are medians of --repeat runs below 200k DOFs, single runs above
     the rigid cylinder (hertz_circle.edp -constraint linearized) at the same element size.
  6. With --peers (make bench PEERS=1): DOLFINx's SNES-VI on the Hertz meshes (study 1b), and FElupe
     on the O-ring plates (bench/felupe_oring.py) against ours at the same h.
+ 7. 3D rubber: the nodal form's saddle point factors against the element penalty form's on the 3D
+    Neo-Hookean block on its foundation (factor entries per unknown), and the 3D indentation
+    (benchmarks/indentation.edp -dim 3): DOFs, iterations per step, total time over the mean
+    factorization time, peak memory; with --large also at h = R/48 (~290k DOFs, about an hour).
 Writes bench.json and BENCH.md in results/bench (--out).
-    bench.py [--smoke] [--repeat 3] [--out results/bench]"""
+    bench.py [--smoke] [--repeat 3] [--large] [--out results/bench]"""
 
 import argparse
 import json
@@ -165,9 +169,10 @@ def cube_study(ns, repeat):
             out_dir = f"{OUT}/cube_n{n}_{solver}"
             # the element form: this study compares the solvers (the nodal form's cost is the
             # volumetric study's subject; with it the 3D Neo-Hookean cube takes 17-20 IPOPT iterations)
+            # (-condense no: IPOPT itself; without contact rows the default is the condensed Newton)
             run = measured(f"cube n = {n} {solver}", repeat, "benchmarks/cube.edp",
                            ["-material", "neohookean", "-dim", "3", "-n", str(n), "-solver", solver,
-                            "-volumetric", "penalty"], out_dir)
+                            "-volumetric", "penalty", "-condense", "no"], out_dir)
             if run is None:
                 continue
             s, wall = run[0], run[1]
@@ -255,6 +260,47 @@ def sphere_study(levels, axisymmetric_levels=()):
     return rows
 
 
+def rubber_3d_study(cube_ns, indentation_levels):
+    """Issue 25's 3D rubber measures: the factor entries per unknown of the nodal form's saddle point
+    matrix against the element penalty form's on the same 3D block (Neo-Hookean, on its foundation),
+    and the 3D indentation's cost in factorizations."""
+    fill, indentation = [], []
+    for n in cube_ns:
+        row = {"n": n}
+        for form in ("penalty", "nodal"):
+            run = measured(f"3D block n = {n} {form}", 1, "benchmarks/cube.edp",
+                           ["-material", "neohookean", "-dim", "3", "-n", str(n), "-foundation", "1", "-volumetric", form],
+                           f"{OUT}/rubber_block_n{n}_{form}")
+            if run is None:
+                continue
+            s, wall, rss, _ = run
+            r = s["results"]
+            row.update({"ndof": s["ndof"], f"{form}_entries": r["condensation_factor_entries"]["computed"],
+                        f"{form}_per_unknown": r["factor_entries_per_unknown"]["computed"], f"{form}_wall_s": wall,
+                        f"{form}_rss_mb": rss, f"{form}_w_error": r["w"]["rel_error"]})
+        if "penalty_per_unknown" in row and "nodal_per_unknown" in row:
+            row["ratio_per_unknown"] = row["nodal_per_unknown"] / row["penalty_per_unknown"]
+            fill.append(row)
+            print(f"3D block n = {n}: {row['ndof']} dofs, factor entries per unknown {row['penalty_per_unknown']:.0f} (penalty), "
+                  f"{row['nodal_per_unknown']:.0f} (nodal saddle point): x{row['ratio_per_unknown']:.2f}", flush=True)
+    for level in indentation_levels:
+        run = measured(f"indentation 3D h = R/{level}", 1, "benchmarks/indentation.edp",
+                       ["-dim", "3", "-h", repr(1.0 / level)], f"{OUT}/indentation_3d_R{level}")
+        if run is None:
+            continue
+        s, wall, rss, _ = run
+        t, r = s["timings"], s["results"]
+        indentation.append({"level": f"R/{level}", "ndof": s["ndof"], "wall_s": wall, "peak_rss_mb": rss,
+                            "iterations": [step["iterations"] for step in s["steps"]],
+                            "factorizations": t["factorizations"], "factorization_mean_s": t["factorization_mean"],
+                            "total_over_factorization": t["total"] / t["factorization_mean"] if t["factorization_mean"] > 0 else float("nan"),
+                            "per_unknown": r["factor_entries_per_unknown"]["computed"], "force": r["force"]["computed"],
+                            "force_small_depth_error": r["force_small_depth"]["rel_error"]})
+        print(f"indentation 3D R/{level}: {s['ndof']} dofs, {t['factorizations']} factorizations of {t['factorization_mean']:.2f} s, "
+              f"wall {wall:.0f} s, RSS {rss:.0f} MB", flush=True)
+    return fill, indentation
+
+
 A_TWO_CYLINDERS = 0.0775818960   # Hertz half-width of the default hertz_two_cylinders (m)
 
 
@@ -333,6 +379,7 @@ def main():
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--out", default=OUT)
     parser.add_argument("--peers", action="store_true", help="also the DOLFINx SNES-VI solve of the Hertz plane (python3-dolfinx)")
+    parser.add_argument("--large", action="store_true", help="also the 3D indentation at h = R/48 (~290k DOFs, about an hour)")
     args = parser.parse_args()
     OUT = args.out
     start = time.time()
@@ -352,10 +399,15 @@ def main():
     volumetric = study(volumetric_study, [12] if args.smoke else [12, 24, 48], [10] if args.smoke else [20, 40, 80], repeat)
     two_bodies = study(two_body_study, [10] if args.smoke else [30, 60, 120], repeat)
     peers_oring = study(felupe_study, [12] if args.smoke else [12, 24, 48], repeat) if args.peers else []
+    rubber = study(rubber_3d_study, [3] if args.smoke else [8, 14],
+                   [8] if args.smoke else ([16, 32, 48] if args.large else [16, 32])) or ([], [])
+    rubber_fill, rubber_indentation = rubber
     growth = slope(hertz, "ndof", "solve_step_s")
     data = {"hertz_plane": hertz, "hertz_time_growth_exponent": growth, "cube_ipopt_vs_newton": cube,
             "hertz_neohookean_ipopt_vs_newton": hertz_newton,
-            "hertz_sphere": sphere, "volumetric": volumetric, "two_bodies": two_bodies, "felupe_oring": peers_oring, "smoke": args.smoke, "repeat": repeat, "total_s": time.time() - start}
+            "hertz_sphere": sphere, "volumetric": volumetric, "two_bodies": two_bodies, "felupe_oring": peers_oring,
+            "rubber_3d_fill": rubber_fill, "rubber_3d_indentation": rubber_indentation,
+            "smoke": args.smoke, "repeat": repeat, "total_s": time.time() - start}
     out = os.path.join(ROOT, OUT)
     os.makedirs(out, exist_ok=True)
     with open(os.path.join(out, "bench.json"), "w") as f:
@@ -414,6 +466,17 @@ def main():
                          + (f"{r['solve_s'] / r['p1_solve_s']:.2f}" if "p1_solve_s" in r else "-",
                             f"{r['solve_s'] / r['mixed_solve_s']:.2f}" if "mixed_solve_s" in r else "-")
                          for r in peers_oring]) if peers_oring else "(make bench PEERS=1)"
+    t7 = markdown.table(("n", "DOFs", "penalty: factor entries", "per unknown", "wall (s)", "nodal saddle point: factor entries",
+                         "per unknown", "wall (s)", "per unknown, nodal / penalty"),
+                        [(r["n"], r["ndof"], f"{r['penalty_entries']:.3g}", f"{r['penalty_per_unknown']:.0f}", f"{r['penalty_wall_s']:.1f}",
+                          f"{r['nodal_entries']:.3g}", f"{r['nodal_per_unknown']:.0f}", f"{r['nodal_wall_s']:.1f}",
+                          f"{r['ratio_per_unknown']:.2f}") for r in rubber_fill])
+    t8 = markdown.table(("h", "DOFs", "SQP iterations per step", "factorizations", "mean (s)", "wall (s)", "wall / factorization",
+                         "factor entries per unknown", "peak RSS (MB)", "force at 0.2 R", "F / Hertz - 1 at 0.02 R"),
+                        [(r["level"], r["ndof"], " ".join(str(i) for i in r["iterations"]), r["factorizations"],
+                          f"{r['factorization_mean_s']:.2f}", f"{r['wall_s']:.0f}", f"{r['total_over_factorization']:.0f}",
+                          f"{r['per_unknown']:.0f}", f"{r['peak_rss_mb']:.0f}", f"{r['force']:.5f}",
+                          f"{r['force_small_depth_error']:.1e}") for r in rubber_indentation])
     text = (f"Hertz plane (P1, linear), solve time growing like DOFs^{growth:.2f}:\n\n{t1}\n\n"
             f"Hertz plane: the condensed solve (default), the full KKT path (-condense no) and "
             f"DOLFINx's SNES-VI on the same mesh (make bench PEERS=1; both with one OpenBLAS thread)\n\n{t1b}\n\n"
@@ -425,10 +488,14 @@ def main():
             f"mesh-converged {ORING_CONVERGED}; Hertz, of a against Hertz)\n\n{t4}\n\n"
             f"Two elastic cylinders (small sliding; updated pairing) against one disc on a rigid cylinder, same h\n\n{t5}\n\n"
             f"O-ring between plates (15 steps to c = 0.3, nu = 0.499): ours (nodal form) against FElupe's P1 and Q1/P0 "
-            f"(bench/felupe_oring.py); converged F/Lindley at c = 0.3: 1.3260\n\n{t6}")
+            f"(bench/felupe_oring.py); converged F/Lindley at c = 0.3: 1.3260\n\n{t6}\n\n"
+            f"3D rubber: factor entries of the nodal form's saddle point matrix against the element penalty form's, "
+            f"3D Neo-Hookean block on its foundation, nu = 0.499\n\n{t7}\n\n"
+            f"3D indentation (benchmarks/indentation.edp -dim 3, 10 steps to 0.2 R)\n\n{t8}")
     print("\n" + text)
     markdown.write(os.path.join(out, "BENCH.md"), "Benchmark timings", text)
-    return 0 if hertz and cube and hertz_newton and sphere and volumetric and two_bodies and (peers_oring or not args.peers) else 1
+    return 0 if (hertz and cube and hertz_newton and sphere and volumetric and two_bodies and rubber_fill and rubber_indentation
+                 and (peers_oring or not args.peers)) else 1
 
 
 if __name__ == "__main__":

@@ -371,6 +371,30 @@ def test_indentation():
           gaps["0.0625"] < 0.5 * gaps["0.125"] and gaps["0.0625"] <= 0.02, f"{gaps['0.125']:.2e} -> {gaps['0.0625']:.2e}")
 
 
+def test_oring_plates_deep():
+    """Issue 25: the O-ring plates pushed to c = 0.4 (20 steps): complete, balanced (1e-8), nothing
+    penetrates, J > 0, the pressure field smooth (checkerboard index <= 0.05; 0.5 and more for a
+    checkerboard), the forces at c = 0.1..0.3 those of the default run (15 steps to 0.3) to the
+    solver's tolerance (1e-6), and the final state a stable equilibrium: no negative eigenvalue of the
+    tangent with the plate's active nodes held normally (solve/stability.idp); the default run at
+    c = 0.3 likewise."""
+    deep = run_summary("oring plates c=0.4", "benchmarks/oring.edp", ["-case", "plates", "-cmax", "0.4", "-steps", "20"])
+    base = run_summary("oring plates default for deep", "benchmarks/oring.edp", ["-case", "plates"])
+    if not (deep and base):
+        return
+    r = deep["results"]
+    check("oring plates c=0.4: complete, balance <= 1e-8, no penetration, J > 0, smooth pressure (index <= 0.05)",
+          deep["complete"] and r["force_balance_rel_error"]["computed"] <= 1e-8 and r["max_penetration"]["computed"] <= 1e-10 * 0.52
+          and r["J_min"]["computed"] > 0 and r["pressure_checkerboard_index"]["computed"] <= 0.05,
+          f"checkerboard {r['pressure_checkerboard_index']['computed']:.3f}")
+    for q in ("force_c0.1", "force_c0.2", "force_c0.3"):
+        a, b = r[q]["computed"], base["results"][q]["computed"]
+        check(f"oring plates c=0.4: {q} = the default run's to 1e-6", abs(a - b) <= 1e-6 * b, f"{a:.10g} vs {b:.10g}")
+    for label, s in (("c=0.4", deep), ("c=0.3 (default)", base)):
+        neg = s["results"]["tangent_negative_eigenvalues"]["computed"]
+        check(f"oring plates {label}: a stable equilibrium (no negative eigenvalue, active nodes held)", neg == 0, f"{neg:g}")
+
+
 def test_stability_check():
     """Issue 25, the stability check (tests/stability_check.edp): the default form's tangent at the exact
     homogeneous state has no negative eigenvalue under the platen at 0, 10, 28 and 35 % compression
@@ -862,9 +886,14 @@ def test_bench_smoke():
                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     path = os.path.join(out("bench"), "bench.json")
     data = json.load(open(path)) if os.path.exists(path) else {}
-    check("bench smoke: exits 0 with the six studies in bench.json", proc.returncode == 0 and data.get("smoke")
+    check("bench smoke: exits 0 with the seven studies in bench.json", proc.returncode == 0 and data.get("smoke")
           and data["hertz_plane"] and data["cube_ipopt_vs_newton"] and data["hertz_neohookean_ipopt_vs_newton"]
-          and data["hertz_sphere"] and data.get("volumetric") and data.get("two_bodies"), proc.stdout.strip().splitlines()[-1:])
+          and data["hertz_sphere"] and data.get("volumetric") and data.get("two_bodies")
+          and data.get("rubber_3d_fill") and data.get("rubber_3d_indentation"), proc.stdout.strip().splitlines()[-1:])
+    if data.get("rubber_3d_fill"):
+        f = data["rubber_3d_fill"][0]
+        check("bench smoke: the 3D block's saddle point factors and the penalty form's both give the exact w (1e-8)",
+              f["penalty_w_error"] <= 1e-8 and f["nodal_w_error"] <= 1e-8, f"{f['penalty_w_error']:.1e}, {f['nodal_w_error']:.1e}")
     if data.get("cube_ipopt_vs_newton"):
         c = data["cube_ipopt_vs_newton"][0]
         check("bench smoke: IPOPT and Newton both give the exact cube (w to 1e-8)",
@@ -1194,6 +1223,16 @@ def test_rivlin_tube():
         locked = p["results"]["inner_radius_error_rel_to_opening"]["computed"]
         check("rivlin tube: the penalty form at nu = 0.4999 locks (error > 10x the nodal form's)", locked > 10 * err,
               f"{locked:.2e} vs {err:.2e}")
+    # issue 25: still locking-free at nu = 0.5: second order in h (n = 8 -> 16 divides the error by
+    # 4.2, measured; 3.5 sits between first order's 2 and second order's 4)
+    errors = {}
+    for n in ("8", "16"):
+        t = run_summary(f"rivlin tube n={n}", "benchmarks/rivlin_tube.edp", ["-n", n])
+        if t:
+            errors[n] = t["results"]["inner_radius_error_rel_to_opening"]["computed"]
+    if len(errors) == 2:
+        check("rivlin tube at nu = 0.5: second order (the error falls by >= 3.5 from n = 8 to 16)",
+              errors["8"] >= 3.5 * errors["16"], f"{errors['8']:.2e} -> {errors['16']:.2e}")
 
 
 def test_hertz_near_incompressible():
@@ -1444,7 +1483,7 @@ def main():
              test_external_commands, test_volumetric_derivatives, test_incompressible_cube, test_rivlin_tube,
              test_hertz_near_incompressible, test_axisymmetric_cylinder, test_axisymmetric_sphere,
              test_oring_torus, test_two_bodies, test_oring_flange, test_sliding_disc,
-             test_cube_homogeneous_default_form, test_stability_check, test_indentation]
+             test_cube_homogeneous_default_form, test_stability_check, test_indentation, test_oring_plates_deep]
     only = sys.argv[1:]
     for test in tests:
         if only and not any(o in test.__name__ for o in only):
