@@ -50,7 +50,7 @@ workspace: deps
 # contact_runtime, which freefem++.pref loads; schur_condensation (the condensed solve),
 # fast_assembly (the energy's matrices and forces), msh_loader (3D gmsh files) and vtu_writer (the
 # results' .vtu), which include/ loads where they are used
-PLUGIN_NAMES = contact_runtime schur_condensation fast_assembly msh_loader vtu_writer
+PLUGIN_NAMES = contact_runtime schur_condensation fast_assembly msh_loader vtu_writer files
 PLUGINS = $(PLUGIN_NAMES:%=plugin/%.so)
 deps:
 	@bash scripts/install_deps.sh

@@ -16,6 +16,14 @@
 // element types gmsh writes for a 3D mesh (points 15, lines 1) are skipped. split = 0 keeps
 // the file's vertices as they are. Prints one line when it splits. A file it cannot read ends
 // the run with "error: ..." and exit code 2 (the suite's bad-input code).
+//
+// mshProblem(file, dim): why an ASCII msh 2.2 file given by a user (-mesh) cannot be used as a mesh
+// of dimension dim, or "" when it can, before FreeFEM's readers see it (gmshload ends in an
+// assertion or reads out of bounds on a corrupt file): the format, the sections and their counts,
+// finite coordinates, no repeated node number, every element's nodes present, only point, line,
+// triangle (and in 3D tetrahedron) elements, at least one element of the dimension and one of its
+// boundary, and no element of the dimension with a zero area or volume (below 1e-12 of the
+// bounding box's).
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
 #include <cerrno>
@@ -28,7 +36,17 @@
 
 namespace {
 
+// A file that cannot be read as a mesh: thrown by the parser, caught by the two entry points.
+struct MshError {
+  std::string what;
+};
+
 [[noreturn]] void refuse(const std::string &file, const std::string &what) {
+  (void)file;
+  throw MshError{what};
+}
+
+[[noreturn]] void exitWith(const std::string &file, const std::string &what) {
   std::cout << "error: mesh file '" << file << "': " << what << std::endl;
   std::cout.flush();
   std::exit(2);
@@ -99,7 +117,7 @@ double signedVolume(const std::vector<double> &xyz, const int *v) {
   return (b0 * (c1 * d2 - c2 * d1) - b1 * (c0 * d2 - c2 * d0) + b2 * (c0 * d1 - c1 * d0)) / 6;
 }
 
-pmesh3 loadMsh3(Stack stack, string *const &fileName, const long &split) {
+pmesh3 readMsh3(Stack stack, string *const &fileName, const long &split) {
   Reader in(*fileName);
   if (!in.section("MeshFormat")) refuse(in.file, "no $MeshFormat section (gmsh -format msh22)");
   double version = in.real();
@@ -199,8 +217,100 @@ pmesh3 loadMsh3(Stack stack, string *const &fileName, const long &split) {
   return Th;
 }
 
+pmesh3 loadMsh3(Stack stack, string *const &fileName, const long &split) {
+  try {
+    return readMsh3(stack, fileName, split);
+  } catch (const MshError &e) {
+    exitWith(*fileName, e.what);
+  }
+}
+
+std::string mshCheck(const std::string &file, long dim) {
+  Reader in(file);
+  if (!in.section("MeshFormat")) refuse(file, "no $MeshFormat section (gmsh -format msh22)");
+  double version = in.real();
+  long binary = in.integer();
+  in.integer();
+  if (version < 2 || version >= 3 || binary != 0) refuse(file, "not an ASCII msh 2.2 file (gmsh -format msh22)");
+  if (!in.section("Nodes")) refuse(file, "no $Nodes section");
+  long nv = in.integer();
+  if (nv <= 0 || nv > 100000000) refuse(file, "no nodes, or an impossible node count");
+  std::vector<double> xyz(3 * nv);
+  std::vector<long> tags(nv);
+  long largestTag = 0;
+  double low[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, high[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (long i = 0; i < nv; i++) {
+    tags[i] = in.integer();
+    if (tags[i] <= 0 || tags[i] > 1000000000) refuse(file, "node number " + std::to_string(tags[i]) + " is out of range");
+    largestTag = std::max(largestTag, tags[i]);
+    for (int c = 0; c < 3; c++) {
+      xyz[3 * i + c] = in.real();
+      if (!std::isfinite(xyz[3 * i + c])) refuse(file, "node " + std::to_string(tags[i]) + " has a coordinate that is not a finite number");
+      low[c] = std::min(low[c], xyz[3 * i + c]);
+      high[c] = std::max(high[c], xyz[3 * i + c]);
+    }
+  }
+  std::vector<long> vertexOf(largestTag + 1, -1);
+  for (long i = 0; i < nv; i++) {
+    if (vertexOf[tags[i]] >= 0) refuse(file, "node number " + std::to_string(tags[i]) + " is given twice");
+    vertexOf[tags[i]] = i;
+  }
+  if (!in.section("Elements")) refuse(file, "no $Elements section");
+  long count = in.integer();
+  if (count <= 0) refuse(file, "no elements");
+  double size = 0;
+  for (int c = 0; c < 3; c++) size = std::max(size, high[c] - low[c]);
+  long volumes = 0, boundaries = 0;
+  const long volumeType = dim == 3 ? 4 : 2, boundaryType = dim == 3 ? 2 : 1;
+  for (long e = 0; e < count; e++) {
+    long number = in.integer();
+    long type = in.integer(), ntags = in.integer();
+    int n = elementVertices(type);
+    if (n == 0 || (dim == 2 && type == 4)) refuse(file, "element " + std::to_string(number) + " has type " + std::to_string(type)
+                                                   + (dim == 2 ? " (a 2D mesh: points, lines and triangles)" : " (points, lines, triangles, tetrahedra)"));
+    if (ntags < 0 || ntags > 100) refuse(file, "element " + std::to_string(number) + " has an impossible tag count");
+    for (long t = 0; t < ntags; t++) in.integer();
+    long v[4];
+    for (int k = 0; k < n; k++) {
+      long node = in.integer();
+      if (node <= 0 || node > largestTag || vertexOf[node] < 0)
+        refuse(file, "element " + std::to_string(number) + " refers to node " + std::to_string(node) + ", which is not in $Nodes");
+      v[k] = vertexOf[node];
+    }
+    if (type == boundaryType) boundaries++;
+    if (type == volumeType) {
+      volumes++;
+      double measure;
+      if (dim == 3) {
+        int w[4] = {int(v[0]), int(v[1]), int(v[2]), int(v[3])};
+        measure = std::fabs(signedVolume(xyz, w));
+      } else {
+        const double *a = &xyz[3 * v[0]], *b = &xyz[3 * v[1]], *c = &xyz[3 * v[2]];
+        measure = 0.5 * std::fabs((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]));
+      }
+      if (!(measure > 1e-12 * std::pow(size, double(dim))))
+        refuse(file, "element " + std::to_string(number) + " is degenerate (" + (dim == 3 ? "zero volume" : "zero area") + ")");
+    }
+  }
+  if (!in.section("EndElements")) refuse(file, "the $Elements section is cut short (no $EndElements)");
+  if (volumes == 0) refuse(file, dim == 3 ? "no tetrahedra" : "no triangles");
+  if (boundaries == 0) refuse(file, dim == 3 ? "no boundary triangles" : "no boundary lines");
+  return "";
+}
+
+string *mshProblem(Stack stack, string *const &fileName, const long &dim) {
+  std::string why;
+  try {
+    why = mshCheck(*fileName, dim);
+  } catch (const MshError &e) {
+    why = e.what;
+  }
+  return Add2StackOfPtr2Free(stack, new string(why));
+}
+
 void init() {
   Global.Add("loadMsh3", "(", new OneOperator2s_<pmesh3, string *, long>(loadMsh3));
+  Global.Add("mshProblem", "(", new OneOperator2s_<string *, string *, long>(mshProblem));
 }
 
 }  // namespace

@@ -11,10 +11,11 @@
 // (nt values each), written as cell fields named by the space-separated `names`. The layout is
 // savevtk's: XML UnstructuredGrid, inline base64 "binary" arrays each led by its 4-byte length,
 // Float32 values, the element cells only (triangles, VTK type 5, or tetrahedra, type 10).
-// scripts/vtu.py reads it for the report's figures. Returns the number of cells; a file it cannot
-// write ends the run with "error: ..." and exit code 2.
+// scripts/vtu.py reads it for the report's figures. Returns the number of cells, or minus the errno
+// of a write that failed (a full disk): the script says so (include/solver.idp).
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
+#include <cerrno>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -71,10 +72,7 @@ long writeFile(const std::string &file, long nv, long nt, int d, const std::vect
     std::exit(2);
   }
   FILE *f = std::fopen(file.c_str(), "w");
-  if (!f) {
-    std::cout << "error: cannot write " << file << std::endl;
-    std::exit(2);
-  }
+  if (!f) return -long(errno ? errno : EIO);
   std::fprintf(f, "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" byte_order=\"LittleEndian\">\n");
   std::fprintf(f, "<UnstructuredGrid>\n<Piece NumberOfPoints=\"%ld\" NumberOfCells=\"%ld\">\n<Points>\n", nv, nt);
   dataArray(f, "Float32", "", 3, points);
@@ -97,10 +95,10 @@ long writeFile(const std::string &file, long nv, long nt, int d, const std::vect
     dataArray(f, "Float32", fields[m], 1, values);
   }
   std::fprintf(f, "</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
-  if (std::fclose(f) != 0) {
-    std::cout << "error: cannot write " << file << std::endl;
-    std::exit(2);
-  }
+  bool failed = std::fflush(f) != 0 || std::ferror(f);
+  int error = errno;
+  if (std::fclose(f) != 0 && !failed) { failed = true; error = errno; }
+  if (failed) return -long(error ? error : EIO);
   return nt;
 }
 

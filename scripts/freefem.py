@@ -17,6 +17,24 @@ def run_driver(script, args, out_dir, timeout=1800, cwd=ROOT):
     return proc.returncode, proc.stdout, time.time() - start
 
 
+def summary_failure(summary):
+    """Why a run's summary says it did not succeed ("" when it did): a failed solve (incomplete) or a
+    completed run whose own checks failed (checks_failed, exit code 4)."""
+    if summary is None:
+        return "no summary"
+    if not summary.get("complete", False):
+        return summary.get("failure") or "incomplete"
+    if summary.get("checks_failed"):
+        return "checks failed: " + ", ".join(summary["checks_failed"])
+    return ""
+
+
+def run_ok(code, summary):
+    """A benchmark run succeeded: exit code 0 (never 3, a failed solve, or 4, failed checks) and a
+    summary that says so."""
+    return code == 0 and summary_failure(summary) == ""
+
+
 def read_summary(out_dir):
     path = os.path.join(out_dir if os.path.isabs(out_dir) else os.path.join(ROOT, out_dir), "summary.json")
     if not os.path.exists(path):

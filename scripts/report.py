@@ -27,7 +27,7 @@ from matplotlib.collections import PolyCollection  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from benchmarks import BENCHMARKS  # noqa: E402
 from run_benchmarks import stored_reference  # noqa: E402
-from freefem import ROOT  # noqa: E402
+from freefem import ROOT, summary_failure  # noqa: E402
 import markdown  # noqa: E402
 import verdicts  # noqa: E402
 import vtu  # noqa: E402
@@ -583,8 +583,8 @@ def verdict_tables():
             checked.append([name, "-", "-", "-", "-", "-", "-", "missing"])
             continue
         stored = stored_reference(name)
-        if not s.get("complete", True):
-            checked.append([name, "run", s["ipopt_status"], "-", "-", "-", s.get("failure") or "incomplete", "FAIL"])
+        if summary_failure(s):
+            checked.append([name, "run", s["ipopt_status"], "-", "-", "-", summary_failure(s), "FAIL"])
         for q, r in s["results"].items():
             c = verdicts.check(name, q)
             reference, error, tolerance, verdict = verdicts.verdict(name, q, r, stored)

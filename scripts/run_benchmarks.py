@@ -12,7 +12,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from benchmarks import BENCHMARKS  # noqa: E402
-from freefem import ROOT, read_summary, run_driver  # noqa: E402
+from freefem import ROOT, read_summary, run_driver, run_ok, summary_failure  # noqa: E402
 import markdown  # noqa: E402
 import verdicts  # noqa: E402
 
@@ -30,7 +30,7 @@ def run_one(name, script, args):
         f.write(output)
     summary = read_summary(out_dir)
     status = summary["ipopt_status"] if summary else "no summary"
-    ok = code == 0 and summary is not None
+    ok = run_ok(code, summary)
     print(f"{name}: {'ok' if ok else 'FAILED'} ({status}, {seconds:.1f} s)", flush=True)
     if not ok:
         print("    " + "\n    ".join(output.strip().splitlines()[-5:]), flush=True)
@@ -46,6 +46,9 @@ def table():
         if summary is None:
             missing.append(name)
             continue
+        if summary_failure(summary):
+            failed += 1
+            rows.append((name, "run", "-", "-", "-", "-", "-", "FAIL: " + summary_failure(summary)))
         stored = stored_reference(name)
         for quantity, r in summary["results"].items():
             reference, error, tolerance, verdict = verdicts.verdict(name, quantity, r, stored)

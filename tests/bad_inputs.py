@@ -114,6 +114,55 @@ CASES = [
     (PLATEN, ["-push", "0.3"], "-push"),
     (PLATEN, ["-waves", "0"], "-waves"),
     (PLATEN, ["-floormargin", "-0.1"], "-floormargin"),
+    # numbers out of range (issue 26): non-finite, overflowing, or out of the problem's scale
+    (CUBE, ["-pressure", "1e400"], "-pressure"),
+    (CUBE, ["-pressure", "inf"], "-pressure"),
+    (CUBE, ["-pressure", "nan"], "-pressure"),
+    (CUBE, ["-pressure", "1" + "0" * 400], "-pressure"),
+    (CUBE, ["-pressure", "1e308"], "-pressure"),
+    (CUBE, ["-pressure", "1e-12"], "-pressure"),
+    (CUBE, ["-pressure", "6e-6"], "-pressure"),
+    (CUBE, ["-n", "1000000000000"], "-n"),
+    (CUBE, ["-dim", "3", "-n", "40"], "-n"),
+    (PLANE, ["-pressure", "1e-12"], "too small"),
+    (PLANE, ["-E", "1e309"], "-E"),
+    (PLANE, ["-E", "1e-12"], "too large"),
+    (PLANE, ["-h", "1e-5", "-zone", "0.5"], "-h"),
+    (CIRCLE, ["-R2", "1e7"], "-R2"),
+    (CIRCLE, ["-splinepoints", "1000000000"], "-splinepoints"),
+    (CYLINDERS, ["-gap", "1e308"], "-gap"),
+    (CYLINDERS, ["-gap", "1e400"], "-gap"),
+    (CYLINDERS, ["-gap", "2"], "-gap"),
+    (CYLINDERS, ["-R2", "1e308"], "-R2"),
+    (CYLINDERS, ["-R2", "1e400"], "-R2"),
+    (CYLINDERS, ["-pressure", "3e5"], "too large"),
+    (SPHERE, ["-axisymmetric", "1", "-pressure", "1e6"], "too large"),
+    (SPHERE, ["-pressure", "1e-9"], "too small"),
+    (SPHERES, ["-E1", "1e-12"], "-E1"),
+    (TORUS, ["-C10", "1e308"], "-C10"),
+    (TORUS, ["-meanradius", "5" * 400], "-meanradius"),
+    (SLIDING, ["-E1", "1e-12"], "-E1"),
+    (ORING, ["-cmax", "1e-9"], "-cmax"),
+    (ORING, ["-h", "1e-4"], "-h"),
+    (TUBE, ["-inner", "1.0000000001"], "-inner"),
+    (PLATEN, ["-push", "1e-9"], "-push"),
+    (INDENTATION, ["-dim", "3", "-h", "0.001", "-depth", "0.5"], "-h"),
+    (CLAMPED, ["-n", "5000"], "-n"),
+    # hostile paths: refused at parse time, nothing run (a shell would have created 'pwned')
+    (PLANE, ["-out", "{tmp}/o';touch pwned;'"], "-out"),
+    (PLANE, ["-out", "-rf"], "-out"),
+    (PLANE, ["-out", "{tmp}/new\nline"], "-out"),
+    (PLANE, ["-mesh", "{tmp}/m';touch pwned;'.msh"], "-mesh"),
+    (SPHERE, ["-mesh", "--help"], "-mesh"),
+    (CIRCLE, ["-splinefile", "{tmp}/s\";touch pwned;\".txt"], "-splinefile"),
+    # corrupt meshes, validated before use; the built-in mesh's sizes are refused with -mesh
+    (PLANE, ["-mesh", "{tmp}/node999999.msh"], "999999"),
+    (PLANE, ["-mesh", "{tmp}/nan.msh"], "finite"),
+    (PLANE, ["-mesh", "{tmp}/degenerate.msh"], "degenerate"),
+    (PLANE, ["-mesh", "{tmp}/noboundary.msh"], "boundary"),
+    (SPHERE, ["-mesh", "{tmp}/flat_tet.msh"], "degenerate"),
+    (PLANE, ["-mesh", "{tmp}/square.msh", "-h", "0.01"], "-h"),
+    (SPHERE, ["-mesh", "{tmp}/flat_tet.msh", "-zone", "0.1"], "-zone"),
 ]
 
 
@@ -125,6 +174,18 @@ def make_files(tmp):
     with open(os.path.join(tmp, "disc2d.msh"), "w") as f:
         f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n2 1 0 0\n3 0 1 0\n$EndNodes\n"
                 "$Elements\n1\n1 2 2 1 1 1 2 3\n$EndElements\n")
+    square = ("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 {x4} 1 0\n$EndNodes\n"
+              "$Elements\n{count}\n1 2 2 1 1 1 2 3\n2 2 2 1 1 1 3 {t2}\n{lines}$EndElements\n")
+    lines = "3 1 2 3 3 1 2\n4 1 2 2 2 2 3\n5 1 2 2 2 3 4\n6 1 2 1 1 4 {e6}\n"
+    for name, x4, t2, e6, with_lines in (("square", "0", "4", "1", True), ("node999999", "0", "4", "999999", True),
+                                         ("nan", "nan", "4", "1", True), ("degenerate", "0", "1", "1", True),
+                                         ("noboundary", "0", "4", "1", False)):
+        with open(os.path.join(tmp, name + ".msh"), "w") as f:
+            f.write(square.format(x4=x4, t2=t2, count=6 if with_lines else 2,
+                                  lines=lines.format(e6=e6) if with_lines else ""))
+    with open(os.path.join(tmp, "flat_tet.msh"), "w") as f:   # four nodes in one plane
+        f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 1 1 0\n$EndNodes\n"
+                "$Elements\n2\n1 2 2 1 1 1 2 3\n2 4 2 1 1 1 2 3 4\n$EndElements\n")
     with open(os.path.join(tmp, "decreasing.txt"), "w") as f:
         f.write("0 0\n0.1 -0.01\n0.05 -0.002\n0.2 -0.03\n0.3 -0.04\n")
     with open(os.path.join(tmp, "garbled.txt"), "w") as f:
@@ -134,7 +195,10 @@ def make_files(tmp):
 def run_case(driver, args, tmp, out_dir):
     """(exit code, the first output line, whether a summary.json was left)."""
     args = [a.replace("{tmp}", tmp) for a in args]
-    code, output, _ = run_driver(driver, args, out_dir)
+    if "-out" in args:   # the case is about -out itself: the run must not write to out_dir either
+        code, output, _ = run_driver(driver, args, None)
+    else:
+        code, output, _ = run_driver(driver, args, out_dir)
     first = output.strip().splitlines()[0] if output.strip() else ""
     return code, first, os.path.exists(os.path.join(out_dir, "summary.json"))
 
@@ -145,7 +209,7 @@ def main():
     print("| driver | input | message | exit code |\n|---|---|---|---|")
     for i, (driver, args, _) in enumerate(CASES):
         code, first, _ = run_case(driver, args, tmp, os.path.join(tmp, f"out{i}"))
-        shown = " ".join(args).replace(tmp, "/tmp")
+        shown = " ".join(a if len(a) <= 40 else f"{a[:4]}...({len(a)} characters)" for a in args).replace(tmp, "/tmp").replace("\n", "\\n")
         message = first.replace(tmp, "/tmp").replace("|", "\\|")
         print(f"| {os.path.basename(driver)} | `{shown}` | `{message}` | {code} |")
 

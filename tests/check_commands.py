@@ -10,11 +10,12 @@ import re
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-# coreutils, bash, grep, sed, mawk, findutils: Essential or required in Debian (minbase has them)
+# coreutils, bash, grep, sed, mawk, findutils, mount (mount, umount): Essential or required in Debian
+# (minbase has them)
 BASE = {"sh", "bash", "cd", "test", "[", "echo", "cat", "rm", "mv", "mkdir", "touch", "cp", "sort", "date", "sleep",
         "printf", "true", "false", "exit", "env", "dirname", "ls", "grep", "sed", "tail", "head", "set", "command",
         "mapfile", "id", "export", "for", "do", "done", "if", "then", "fi", "return", "pwd", "dpkg", "apt-get", "make",
-        "sudo"}
+        "sudo", "mount", "umount"}
 SHELL_SPLIT = re.compile(r"&&|\|\||;|\|")
 
 
