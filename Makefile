@@ -29,12 +29,12 @@ convergence: deps
 	$(PYTHON) scripts/hertz_convergence.py --cases plane,circle_vertical,circle_linearized,circle_exact
 
 # timings: Hertz from 10k to 1M DOFs, the cost of contact, IPOPT against Newton, 3D, the
-# volumetric forms, two bodies: results/bench/BENCH.md
+# volumetric forms, two bodies: results/performance/BENCH.md
 # PEERS=1: also DOLFINx's SNES-VI solve of the same Hertz meshes and FElupe on the O-ring
 # (installs python3-dolfinx, and FElupe in a venv; 14 minutes in all on the 2-core machine)
 bench: deps
 	@if [ -n "$(PEERS)" ]; then bash scripts/install_deps.sh --peers; fi
-	$(PYTHON) scripts/bench.py $(if $(PEERS),--peers)
+	$(PYTHON) scripts/performance/studies.py $(if $(PEERS),--peers)
 
 # randomized parameter sets, checked for what must always hold (fixed seed; N=200 by default)
 N ?= 200
@@ -47,21 +47,24 @@ workspace: deps
 	@bash scripts/workspace.sh "$(DIR)"
 
 # Debian's packages, then the suite's plugins (each plugin/<name>.cpp says what it is for):
-# contact_runtime, which freefem++.pref loads; schur_condensation (the condensed solve),
-# fast_assembly (the energy's matrices and forces), msh_loader (3D gmsh files) and vtu_writer (the
-# results' .vtu), which include/ loads where they are used
-PLUGIN_NAMES = contact_runtime schur_condensation fast_assembly msh_loader vtu_writer files
+# headless, which freefem++.pref loads; run_control (exit codes, wall clock), files (no shell),
+# fold_search (the fold guard), schur_condensation (the condensed solve), fast_assembly (the
+# energy's matrices and forces), msh_loader (gmsh files) and vtu_writer (the results' .vtu), which
+# include/ loads where they are used
+PLUGIN_NAMES = headless run_control files fold_search schur_condensation fast_assembly msh_loader vtu_writer
 PLUGINS = $(PLUGIN_NAMES:%=plugin/%.so)
 deps:
 	@bash scripts/install_deps.sh
 	@$(MAKE) -s --no-print-directory $(PLUGINS)
 
-# each with FreeFEM's ff-c++, its log in plugin/build_<name>.log; the Schur plugin links
-# Debian's sequential MUMPS and METIS
-FFCXX_FLAGS_schur_condensation = -I/usr/include/mumps_seq -ldmumps_seq -lmetis
+# each with FreeFEM's ff-c++, its log in plugin/build_<name>.log. A plugin names the libraries it
+# links as FreeFEM's own plugins do, on a line "//ff-c++-LIBRARY-dep: metis mumps_seq"; their flags
+# come from FreeFEM's WHERE_LIBRARY-config (Debian's ff-c++ -auto cannot find that file itself)
+WHERE_LIBRARY = /usr/include/freefem++/WHERE_LIBRARY-config
+library_flags = $(foreach d,$(shell sed -n 's|^//ff-c++-LIBRARY-dep:||p' $(1)),$(shell sed -n 's|^$(d) LD ||p' $(WHERE_LIBRARY)))
 plugin/%.so: plugin/%.cpp
-	@cd plugin && ff-c++ $*.cpp $(FFCXX_FLAGS_$*) > build_$*.log 2>&1 || { cat build_$*.log; exit 1; }
+	@cd plugin && ff-c++ $*.cpp $(call library_flags,$<) > build_$*.log 2>&1 || { cat build_$*.log; exit 1; }
 	@rm -f plugin/$*.o
 
 clean:
-	rm -rf results $(PLUGINS) $(PLUGIN_NAMES:%=plugin/build_%.log)
+	rm -rf results plugin/*.so plugin/build_*.log

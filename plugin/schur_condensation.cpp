@@ -1,3 +1,4 @@
+//ff-c++-LIBRARY-dep: metis mumps_seq
 // schur_condensation: the elastic problem condensed onto the contact dofs, by MUMPS's own Schur
 // complement (ICNTL(19)) and its reduction/expansion of right-hand sides (ICNTL(26)). Built by
 // `make` with ff-c++ against Debian's sequential MUMPS (libmumps-seq-dev) and METIS (libmetis-dev);

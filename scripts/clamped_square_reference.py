@@ -2,7 +2,7 @@
 """Reference values for benchmarks/clamped_square.edp, which has no analytic solution: a
 mesh-convergence study with P2 on n = 25, 50, 100, 200 elements per side, Richardson
 extrapolation from the three finest levels where the quantity converges monotonically, and a
-P1 run on the finest mesh as a cross-check. Writes reference/clamped_square.json (values,
+P1 run on the finest mesh as a cross-check. Writes benchmarks/reference/clamped_square.json (values,
 error estimates, every run) and prints the table. Takes a few minutes on 2 cores:
     python3 scripts/clamped_square_reference.py"""
 
@@ -56,8 +56,8 @@ def main():
                     "monotone, else the finest value with its last change as error estimate; "
                     "p1_fine: P1 on n = 200",
             "reference": reference, "runs": runs}
-    os.makedirs(os.path.join(ROOT, "reference"), exist_ok=True)
-    with open(os.path.join(ROOT, "reference", "clamped_square.json"), "w") as f:
+    os.makedirs(os.path.join(ROOT, "benchmarks", "reference"), exist_ok=True)
+    with open(os.path.join(ROOT, "benchmarks", "reference", "clamped_square.json"), "w") as f:
         json.dump(data, f, indent=1)
     head = "| quantity | " + " | ".join(f"P2 n={n}" for n in LEVELS) + " | P1 n=200 | reference | order | error est. |"
     print(head + "\n|" + "---|" * (len(LEVELS) + 5))

@@ -12,7 +12,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from freefem import ROOT, read_summary, run_driver  # noqa: E402
-import markdown  # noqa: E402
+import md_tables  # noqa: E402
 
 CASES = {
     "plane": ("benchmarks/hertz_plane.edp", [], 2.75e6, 2.1e9, 1.0),
@@ -54,10 +54,10 @@ def main():
                   f"L2 {row[6]:.2e}, {seconds:.1f} s", flush=True)
     header = ("case", "h", "DOFs", "IPOPT it.", "a rel. error", "p_max rel. error", "L2(p) rel. error",
               "force balance", "time (s)")
-    table = markdown.table(header, [(c, h, n, it, f"{ea:.2e}", f"{ep:.2e}", f"{el:.2e}", f"{fb:.0e}", f"{t:.1f}")
+    table = md_tables.table(header, [(c, h, n, it, f"{ea:.2e}", f"{ep:.2e}", f"{el:.2e}", f"{fb:.0e}", f"{t:.1f}")
                                     for c, h, n, it, ea, ep, el, fb, t in rows])
     print("\n" + table)
-    markdown.write(os.path.join(ROOT, "results", "hertz_convergence.md"), "Hertz convergence", table)
+    md_tables.write(os.path.join(ROOT, "results", "hertz_convergence.md"), "Hertz convergence", table)
     return 1 if failed else 0
 
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs what the suite needs on Debian/Ubuntu, skipping what is already there:
 # FreeFEM with its plugins (ff-Ipopt, iovtk, msh3, gsl) and its plugin compiler ff-c++ (with g++:
-# the suite's own plugin, plugin/contact_runtime.cpp), gmsh, python3 with matplotlib, GNU time
+# the suite's own plugins, plugin/*.cpp), gmsh, python3 with matplotlib, GNU time
 # (the bench's peak-memory measurement), sequential MUMPS's and METIS's headers (the condensed solve's plugin),
 # and OpenBLAS: Debian's
 # MUMPS (IPOPT's linear solver) otherwise runs on the reference BLAS, and the factorisations
@@ -36,8 +36,8 @@ dpkg -s libmetis-dev >/dev/null 2>&1 || missing+=(libmetis-dev)
 # the report's figures: matplotlib for Debian's python3 (the Makefile runs /usr/bin/python3)
 dpkg -s python3-matplotlib >/dev/null 2>&1 || missing+=(python3-matplotlib)
 
-# --peers (make bench PEERS=1): DOLFINx for bench/dolfinx_hertz.py, and python3-venv for the venv in
-# which bench/felupe_oring.py installs FElupe with pip
+# --peers (make bench PEERS=1): DOLFINx for scripts/peers/dolfinx_hertz.py, and python3-venv for the venv in
+# which scripts/peers/felupe_oring.py installs FElupe with pip
 if [ "${1:-}" = "--peers" ]; then
   dpkg -s python3-dolfinx >/dev/null 2>&1 || missing+=(python3-dolfinx)
   dpkg -s python3-venv >/dev/null 2>&1 || missing+=(python3-venv)

@@ -25,10 +25,10 @@ import numpy as np  # noqa: E402
 from matplotlib.collections import PolyCollection  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from benchmarks import BENCHMARKS  # noqa: E402
+from benchmark_list import BENCHMARKS  # noqa: E402
 from run_benchmarks import stored_reference  # noqa: E402
 from freefem import ROOT, summary_failure  # noqa: E402
-import markdown  # noqa: E402
+import md_tables  # noqa: E402
 import verdicts  # noqa: E402
 import vtu  # noqa: E402
 
@@ -108,7 +108,7 @@ def fig_hertz_pressure(names, filename, title, unit_x="x (m)"):
 
 def fig_clamped_pressure(name, filename):
     s, rows = summary(name), read_csv(os.path.join(RESULTS, name, "pressure.csv"))
-    ref_path = os.path.join(ROOT, "reference", "clamped_square.json")
+    ref_path = os.path.join(ROOT, "benchmarks", "reference", "clamped_square.json")
     if not s or not rows:
         return None
     fig, ax = plt.subplots(figsize=(7, 4.2))
@@ -390,7 +390,7 @@ def fig_convergence_hertz(filename):
 
 
 def fig_convergence_clamped(filename):
-    path = os.path.join(ROOT, "reference", "clamped_square.json")
+    path = os.path.join(ROOT, "benchmarks", "reference", "clamped_square.json")
     if not os.path.exists(path):
         return None
     data = json.load(open(path))
@@ -417,7 +417,7 @@ def fig_iterations(filename):
         if runs:
             ax.semilogx([s["ndof"] for _, s in runs], [s["ipopt_iterations"] for _, s in runs], style, label=f"Hertz {case}")
             plotted = True
-    path = os.path.join(ROOT, "reference", "clamped_square.json")
+    path = os.path.join(ROOT, "benchmarks", "reference", "clamped_square.json")
     if os.path.exists(path):
         runs = [r for r in json.load(open(path))["runs"] if r["order"] == 2]
         ax.semilogx([r["ndof"] for r in runs], [r["iterations"] for r in runs], "v-", label="clamped square P2")
@@ -469,7 +469,7 @@ def sections():
         ("3D Hertz: a hemisphere on a rigid plane", ["hertz_sphere", "hertz_sphere_axisymmetric"],
          "A quarter hemisphere of tetrahedra on a rigid plane: Hertz's point contact within 1 % on this coarse "
          "mesh (h = a/8); the README's performance section has finer meshes. The same sphere from its 2D meridian "
-         "section (-axisymmetric 1, the hoop stretch and the 2 pi r measure) meets Hertz within 0.21 % in under a "
+         "section (-dim axi, the hoop stretch and the 2 pi r measure) meets Hertz within 0.21 % in under a "
          "second.", [
             lambda: fig_hertz_pressure(["hertz_sphere", "hertz_sphere_axisymmetric"], "hertz_sphere_pressure.png",
                                        "3D Hertz, hemisphere on a rigid plane: contact pressure against r\nE = 2.1e5 Pa, nu = 0.3, R = 1 m, f = 100 Pa",
@@ -508,7 +508,7 @@ def sections():
         ("Clamped square under its own weight (preprint 4.3)", ["clamped_square"],
          "A steel square clamped on one side bends onto a rigid wall under its own weight; the upper part presses, "
          "the lower part lifts off. No analytic answer exists: the references come from our own P2 mesh study "
-         "(reference/clamped_square.json), and the weight carried by clamp and wall is exact.", [
+         "(benchmarks/reference/clamped_square.json), and the weight carried by clamp and wall is exact.", [
             lambda: fig_clamped_pressure("clamped_square", "clamped_square_pressure.png"),
             lambda: fig_deformed("clamped_square", "clamped_square_deformed.png",
                                  "Clamped square on a rigid wall: von Mises stress", [vline(0, "rigid wall")])]),
@@ -617,8 +617,8 @@ def main():
     checked, info, absent, passed, failed = verdict_tables()
     verdict_line = f"**{passed} PASS, {failed} FAIL** over {len(checked)} checked quantities" + \
         (f"; not run: {', '.join(absent)}" if absent else "")
-    md = ["# Report", "", verdict_line, "", KINDS_TEXT, "", markdown.table(CHECK_HEADER, checked), "",
-          "## Informational quantities", "", markdown.table(INFO_HEADER, info)]
+    md = ["# Report", "", verdict_line, "", KINDS_TEXT, "", md_tables.table(CHECK_HEADER, checked), "",
+          "## Informational quantities", "", md_tables.table(INFO_HEADER, info)]
     body = [("verdict", verdict_line, KINDS_TEXT), ("table", CHECK_HEADER, checked),
             ("heading", "Informational quantities"), ("table", INFO_HEADER, info)]
     produced, missing = [], []

@@ -11,9 +11,9 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from benchmarks import BENCHMARKS  # noqa: E402
+from benchmark_list import BENCHMARKS  # noqa: E402
 from freefem import ROOT, read_summary, run_driver, run_ok, summary_failure  # noqa: E402
-import markdown  # noqa: E402
+import md_tables  # noqa: E402
 import verdicts  # noqa: E402
 
 
@@ -58,16 +58,16 @@ def table():
             rows.append((name, quantity, fmt(r["computed"], ".10g"), fmt(reference, ".10g"),
                          verdicts.check(name, quantity).kind, tolerance, fmt(error, ".2e"), verdict))
     header = ("benchmark", "quantity", "computed", "reference", "reference kind", "tolerance", "error", "verdict")
-    text = markdown.table(header, rows)
+    text = md_tables.table(header, rows)
     line = f"{len(rows) - failed} PASS, {failed} FAIL" + (f"; missing or failed runs: {', '.join(missing)}" if missing else "")
     print("\n" + text + "\n\n" + line)
-    markdown.write(os.path.join(ROOT, "results", "RESULTS.md"), "Results", text + "\n\n" + line)
+    md_tables.write(os.path.join(ROOT, "results", "RESULTS.md"), "Results", text + "\n\n" + line)
     return 1 if missing or failed else 0
 
 
 def stored_reference(name):
-    """Mesh-converged references kept in reference/<name>.json."""
-    path = os.path.join(ROOT, "reference", name + ".json")
+    """Mesh-converged references kept in benchmarks/reference/<name>.json."""
+    path = os.path.join(ROOT, "benchmarks", "reference", name + ".json")
     return {q: v["value"] for q, v in json.load(open(path))["reference"].items()} if os.path.exists(path) else {}
 
 

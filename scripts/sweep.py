@@ -70,7 +70,7 @@ def draw_sphere_axisymmetric(rng):
     a_over_R = rng.uniform(0.05, 0.12)
     # a = (3 P R (1 - nu^2) / (4 E))^(1/3) with P = f pi R^2
     f = (a_over_R * R) ** 3 * 4 * E / (3 * R * (1 - nu ** 2) * math.pi * R ** 2)
-    return "benchmarks/hertz_sphere.edp", ["-axisymmetric", "1", "-E", f"{E:.6g}", "-nu", f"{nu:.4f}", "-R", f"{R:.4f}",
+    return "benchmarks/hertz_sphere.edp", ["-dim", "axi", "-E", f"{E:.6g}", "-nu", f"{nu:.4f}", "-R", f"{R:.4f}",
                                           "-pressure", f"{f:.6g}"], R
 
 

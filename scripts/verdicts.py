@@ -33,7 +33,7 @@ class Check:
 
 INFO = Check("info")
 
-# per (benchmark, quantity); benchmark names are those of scripts/benchmarks.py
+# per (benchmark, quantity); benchmark names are those of scripts/benchmark_list.py
 _TABLE = {}
 
 
@@ -104,7 +104,7 @@ _add(["sliding_disc"], ["force_ripple"],
 _HERTZ = _HERTZ_TIGHT + ["hertz_circle_exact", "hertz_circle_linearized", "hertz_sphere", "hertz_plane_neohookean"] + _TWO_BODY
 _add(_HERTZ, ["contact_force"], Check("exact", 1e-8, note="the applied load"))
 
-_CLAMPED_NOTE = "reference/clamped_square.json (P2, n = 25..200, Richardson); bound ~1.5x the n = 25 error"
+_CLAMPED_NOTE = "benchmarks/reference/clamped_square.json (P2, n = 25..200, Richardson); bound ~1.5x the n = 25 error"
 _add(["clamped_square"], ["contact_force", "clamp_reaction_x"], Check("mesh-converged", 1e-3, note=_CLAMPED_NOTE))
 _add(["clamped_square"], ["pressure_at_y0.8", "pressure_at_y0.9", "pressure_at_y0.95"],
      Check("mesh-converged", 2.5e-3, note=_CLAMPED_NOTE))

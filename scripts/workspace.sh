@@ -2,7 +2,7 @@
 # `make workspace DIR=<folder>`: a folder of your own for your own problem, outside the suite.
 # Copies the template driver docs/template/my_problem.edp there (unless the folder has one) and
 # writes <folder>/freefem++.pref, the one setting that lets FreeFem++, started in that folder,
-# find the suite: its include/ folder, its plugin (plugin/contact_runtime.so) and Debian's
+# find the suite: its include/ folder, its plugins (plugin/*.so) and Debian's
 # plugin folder (Debian's own /etc/freefem++.pref names one that does not exist). The same lines
 # in ~/.freefem++.pref make the suite available in every folder.
 set -euo pipefail
@@ -14,7 +14,7 @@ cat > "$dir/freefem++.pref" <<PREF
 loadpath += "/usr/lib/freefem++"
 loadpath += "$root/plugin"
 includepath += "$root/include"
-load += "contact_runtime"
+load += "headless"
 verbosity = 0
 PREF
 echo "workspace $(cd "$dir" && pwd): my_problem.edp and freefem++.pref (the suite: $root)"

@@ -670,14 +670,14 @@ def test_hertz_hyperelastic():
 
 # ---------------------------------------------------------------- clamped square, sphere
 def test_clamped_square():
-    """No analytic solution: the default run (P2, n = 25) against reference/clamped_square.json
+    """No analytic solution: the default run (P2, n = 25) against benchmarks/reference/clamped_square.json
     (P2 n = 25..200, Richardson; scripts/clamped_square_reference.py). Each bound is about 1.5x
     the measured error of n = 25 against the reference: contact force 6.5e-4, pressure at
     y = 0.8, 0.9, 0.95 up to 1.6e-3, centre of pressure 9e-5 (absolute); the separation point
     is located to half a node spacing (0.01). p(0.7) is left out: it lies within one element of
     the separation point (n = 25 is 9 % off there). Force balance and weight are exact to the
     solver tolerance."""
-    with open(os.path.join(ROOT, "reference", "clamped_square.json")) as f:
+    with open(os.path.join(ROOT, "benchmarks", "reference", "clamped_square.json")) as f:
         ref = json.load(f)["reference"]
     s = run_summary("clamped square", "benchmarks/clamped_square.edp", [])
     if s is None:
@@ -776,7 +776,7 @@ def test_report():
     is a real PNG of a sensible size, the others are skipped, and the table lists every
     benchmark (the ones that did not run as missing)."""
     sys.path.insert(0, os.path.join(ROOT, "scripts"))
-    from benchmarks import BENCHMARKS
+    from benchmark_list import BENCHMARKS
     results = out("report results")
     small = {"hertz_plane": ("benchmarks/hertz_plane.edp", []),
              "clamped_square": ("benchmarks/clamped_square.edp", ["-n", "10"]),
@@ -880,13 +880,13 @@ def test_step_cutting():
 
 def test_bench_smoke():
     """`make bench` at its smallest level of each study (no timing is asserted: the numbers
-    are the benchmark's record): it runs, writes bench.json with every study, and the
+    are the benchmark's record): it runs, writes performance.json with every study, and the
     contact solve, Newton and the sphere give their answers."""
-    proc = subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "bench.py"), "--smoke", "--out", out("bench")],
+    proc = subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "performance", "studies.py"), "--smoke", "--out", out("bench")],
                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    path = os.path.join(out("bench"), "bench.json")
+    path = os.path.join(out("bench"), "performance.json")
     data = json.load(open(path)) if os.path.exists(path) else {}
-    check("bench smoke: exits 0 with the seven studies in bench.json", proc.returncode == 0 and data.get("smoke")
+    check("bench smoke: exits 0 with the seven studies in performance.json", proc.returncode == 0 and data.get("smoke")
           and data["hertz_plane"] and data["cube_ipopt_vs_newton"] and data["hertz_neohookean_ipopt_vs_newton"]
           and data["hertz_sphere"] and data.get("volumetric") and data.get("two_bodies")
           and data.get("rubber_3d_fill") and data.get("rubber_3d_indentation"), proc.stdout.strip().splitlines()[-1:])
@@ -1017,6 +1017,13 @@ def test_template_workspace():
         check("workspace: the template's indentation force balances to 1e-8, no penetration",
               r["force_balance_rel_error"]["computed"] <= 1e-8 and r["max_penetration"]["computed"] <= 1e-10 * 2
               and r["indentation_force"]["computed"] > 0, f"{r['force_balance_rel_error']['computed']:.1e}")
+    # the template takes -nu 0.5 (exact incompressibility, its default -volumetric nodal); it used to
+    # tell the user to add -volumetric nodal, then reject it as an unknown parameter
+    code, output, _ = run_driver("my_problem.edp", ["-depth", "0.2", "-steps", "2", "-h", "0.2", "-nu", "0.5"],
+                                 os.path.join(work, "o_incompressible"), cwd=work)
+    s = read_summary(os.path.join(work, "o_incompressible"))
+    check("workspace: the template runs at -nu 0.5, balanced to 1e-8", code == 0 and s is not None and s["complete"]
+          and s["results"]["force_balance_rel_error"]["computed"] <= 1e-8, output.strip().splitlines()[-2:])
     code, output, _ = run_driver(os.path.join(ROOT, "benchmarks", "hertz_plane.edp"), ["-h", "0.004"], os.path.join(work, "hertz"),
                                  cwd=work)
     check("workspace: a suite driver runs from that folder by its path", code == 0, output.strip().splitlines()[-1:])
@@ -1166,7 +1173,7 @@ def error_lines(output):
 def test_no_shell():
     """No path reaches a shell: an -out holding $(touch pwned) is just a folder's name, through the
     run, its IPOPT options, its gmsh call (hertz_sphere meshes with gmsh) and its clean-up."""
-    for driver, args in (("benchmarks/cube.edp", []), ("benchmarks/hertz_sphere.edp", ["-axisymmetric", "0"])):
+    for driver, args in (("benchmarks/cube.edp", []), ("benchmarks/hertz_sphere.edp", ["-dim", "3"])):
         parent = out(f"no shell {os.path.basename(driver)}")
         o = os.path.join(parent, "$(touch${IFS}pwned)")
         code, output, _ = run_driver(driver, args, o)
@@ -1468,16 +1475,16 @@ def test_axisymmetric_cylinder():
 
 
 def test_axisymmetric_sphere():
-    """Hertz's sphere on a plane from the 2D meridian section (hertz_sphere.edp -axisymmetric 1):
+    """Hertz's sphere on a plane from the 2D meridian section (hertz_sphere.edp -dim axi):
     a and p_max within 0.3 % of Hertz on the default mesh (measured 0.07 % and 0.21 %: p_max stays
     0.24 % low under refinement, the finite hemisphere), L2 of p within 1 % (0.26 %), the contact
     force from the multipliers equal to the load f pi R^2 per full revolution to 1e-8, force balance
     and penetration as for every Hertz run."""
-    hertz_case("hertz sphere axisymmetric", "benchmarks/hertz_sphere.edp", ["-axisymmetric", "1"])
+    hertz_case("hertz sphere axisymmetric", "benchmarks/hertz_sphere.edp", ["-dim", "axi"])
     # candidates within 0.09 < a = 0.1006: the contact zone reaches their edge, which the report
     # must refuse (a fit on a truncated contact zone would be a silent wrong answer)
     out = os.path.join(TMP, "sphere_few_candidates")
-    code, output, _ = run_driver("benchmarks/hertz_sphere.edp", ["-axisymmetric", "1", "-candidates", "0.09"], out)
+    code, output, _ = run_driver("benchmarks/hertz_sphere.edp", ["-dim", "axi", "-candidates", "0.09"], out)
     last = output.strip().splitlines()[-1] if output.strip() else ""
     summary = read_summary(out)
     check("hertz sphere axisymmetric -candidates 0.09: refused after the solve, naming -candidates",

@@ -8,7 +8,7 @@ condition y + u_y >= 0 at the vertices of boundary label 3 (the arc near the ori
 vertical rigid motion of the body is held by the contact alone.
 
 Same discrete problem as our suite, different solver:
-  * the mesh is the project's own: FreeFem++ runs bench/hertz_mesh.edp (quarterDiscMesh with
+  * the mesh is the project's own: FreeFem++ runs scripts/performance/hertz_mesh.edp (quarterDiscMesh with
     hertz_plane.edp's parameters) and saves it as a FreeFEM .msh file, which is read here and
     handed to dolfinx.mesh.create_mesh; the boundary labels are carried over through the
     original vertex numbers (DOLFINx renumbers vertices);
@@ -41,11 +41,11 @@ default backtracking line search; MUMPS with its default ordering. Other PETSc o
 the solver: --petsc NAME=VALUE (e.g. --petsc mat_mumps_icntl_7=0 for AMD).
 
 Run it with Debian's Python (python3-dolfinx 0.5.2 is a Debian package), from anywhere:
-    OMP_NUM_THREADS=1 /usr/bin/python3 bench/dolfinx_hertz.py --h 0.001836226277597457
-    OMP_NUM_THREADS=1 /usr/bin/python3 bench/dolfinx_hertz.py --h 0.00068858484625
-    /usr/bin/python3 bench/dolfinx_hertz.py --h a/30 --mesh-only-from /tmp/hertz.msh
+    OMP_NUM_THREADS=1 /usr/bin/python3 scripts/peers/dolfinx_hertz.py --h 0.001836226277597457
+    OMP_NUM_THREADS=1 /usr/bin/python3 scripts/peers/dolfinx_hertz.py --h 0.00068858484625
+    /usr/bin/python3 scripts/peers/dolfinx_hertz.py --h a/30 --mesh-only-from /tmp/hertz.msh
 --h is the element size in the contact zone, in metres or as a/N with Hertz's exact a (a/30
-is hertz_plane.edp's default h); scripts/bench.py's levels use a rounded to 0.0550867877, so
+is hertz_plane.edp's default h); scripts/performance/studies.py's levels use a rounded to 0.0550867877, so
 pass its h = 0.0550867877/N as a number to get the same meshes. --h sets the mesh and the fit
 margin as in hertz_plane.edp. Without --mesh-only-from the script calls FreeFem++ (timed
 apart as freefem_mesh_s); with it, the file must be the mesh of that h. The first run also
@@ -71,7 +71,7 @@ import subprocess
 import sys
 import tempfile
 
-REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+REPO_ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))   # scripts/peers/ -> the suite
 MESH_SCRIPT = os.path.join("bench", "hertz_mesh.edp")
 
 # hertz_plane.edp's defaults (m, Pa)
@@ -156,7 +156,7 @@ class ReportError(Exception):
 
 
 def build_mesh_file(element_size, mesh_path):
-    """Run bench/hertz_mesh.edp from the repository root (where freefem++.pref is)."""
+    """Run scripts/performance/hertz_mesh.edp from the repository root (where freefem++.pref is)."""
     command = ["FreeFem++", "-nw", MESH_SCRIPT, "-h", repr(element_size), "-meshfile", mesh_path]
     try:
         run = subprocess.run(command, cwd=REPO_ROOT, capture_output=True, text=True)

@@ -60,9 +60,9 @@ results/peers/venv (python3 -m venv, Debian's package python3-venv), installs fe
 it (or the closest version pip can get if that one cannot be installed), and runs itself again
 inside it. Set OMP_NUM_THREADS=1 for timings comparable with a single-threaded FreeFEM run.
 
-    /usr/bin/python3 bench/felupe_oring.py --h R/24 --formulation p1
-    /usr/bin/python3 bench/felupe_oring.py --h 0.021666666666666667 --formulation mixed --steps 15
-    /usr/bin/python3 bench/felupe_oring.py --h R/24 --formulation p1 --mesh-from freefem
+    /usr/bin/python3 scripts/peers/felupe_oring.py --h R/24 --formulation p1
+    /usr/bin/python3 scripts/peers/felupe_oring.py --h 0.021666666666666667 --formulation mixed --steps 15
+    /usr/bin/python3 scripts/peers/felupe_oring.py --h R/24 --formulation p1 --mesh-from freefem
 
 Our driver's sizes are `-h R/k` as numbers: R/12 = 0.043333333333333335, R/24 = 0.021666666666666667,
 R/48 = 0.010833333333333334 (give all the digits: the mesh's radial divisions are ceil(R/h), and
@@ -75,7 +75,7 @@ import time
 
 WALL_START = time.perf_counter()
 
-REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))   # scripts/peers/ -> the suite
 VENV = os.path.join(REPO, "results", "peers", "venv")
 FELUPE_PIN = "11.3.0"
 REEXEC_FLAG = "FELUPE_ORING_IN_VENV"

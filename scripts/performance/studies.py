@@ -5,7 +5,7 @@ Studies (timings are medians of --repeat runs below 200k DOFs, single runs above
     IPOPT iterations, wall time split into mesh / IPOPT internals (MUMPS) / callbacks / rest,
     peak memory, errors of a and p_max.
  2. The cost of contact: the same disc supported instead of in contact, one direct MUMPS
-    solve (bench/supported_disc.edp); ratio of the contact solve to it.
+    solve (scripts/performance/supported_disc.edp); ratio of the contact solve to it.
  3. Hyperelastic: the 3D Neo-Hookean cube without contact, IPOPT against plain Newton; and
     Neo-Hookean Hertz, IPOPT against plain Newton given the contact set IPOPT found
     (hertz_plane.edp -newton 1), with the difference of the two solutions.
@@ -13,13 +13,13 @@ Studies (timings are medians of --repeat runs below 200k DOFs, single runs above
  5. Two bodies: the two elastic cylinders (small sliding, and updated pairing) against the disc on
     the rigid cylinder (hertz_circle.edp -constraint linearized) at the same element size.
  6. With --peers (make bench PEERS=1): DOLFINx's SNES-VI on the Hertz meshes (study 1b), and FElupe
-    on the O-ring plates (bench/felupe_oring.py) against ours at the same h.
+    on the O-ring plates (scripts/peers/felupe_oring.py) against ours at the same h.
  7. 3D rubber: the nodal form's saddle point factors against the element penalty form's on the 3D
     Neo-Hookean block on its foundation (factor entries per unknown), and the 3D indentation
     (benchmarks/indentation.edp -dim 3): DOFs, iterations per step, total time over the mean
     factorization time, peak memory; with --large also at h = R/48 (~290k DOFs, about an hour).
-Writes bench.json and BENCH.md in results/bench (--out).
-    bench.py [--smoke] [--repeat 3] [--large] [--out results/bench]"""
+Writes performance.json and PERFORMANCE.md in results/performance (--out).
+    scripts/performance/studies.py [--smoke] [--repeat 3] [--large] [--out results/performance]"""
 
 import argparse
 import json
@@ -31,13 +31,13 @@ import subprocess
 import sys
 import time
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))   # scripts/
 from freefem import ROOT, read_summary  # noqa: E402
-import markdown  # noqa: E402
+import md_tables  # noqa: E402
 
 A_HERTZ = 0.0550867877   # Hertz half-width of the default hertz_plane (m)
 A_SPHERE = 0.1005577     # of the default hertz_sphere (m)
-OUT = "results/bench"      # --out
+OUT = "results/performance"      # --out
 ONE_THREAD = dict(os.environ, OMP_NUM_THREADS="1")   # one OpenBLAS/OpenMP thread: how the peers run
 
 
@@ -107,8 +107,8 @@ def peer_runs(command, repeat, wall_key):
 
 
 def dolfinx_run(h, repeat):
-    """bench/dolfinx_hertz.py (DOLFINx SNES-VI, Debian's python3-dolfinx) on the same mesh."""
-    return peer_runs(["/usr/bin/python3", "bench/dolfinx_hertz.py", "--h", repr(h)], repeat, "total_wall_s")
+    """scripts/peers/dolfinx_hertz.py (DOLFINx SNES-VI, Debian's python3-dolfinx) on the same mesh."""
+    return peer_runs(["/usr/bin/python3", "scripts/peers/dolfinx_hertz.py", "--h", repr(h)], repeat, "total_wall_s")
 
 
 def hertz_study(levels, repeat, full_path_levels, peers):
@@ -127,7 +127,7 @@ def hertz_study(levels, repeat, full_path_levels, peers):
         internal, callbacks = ipopt_cpu(out_dir)
         step = solve_seconds(s)
         candidates = int(re.search(r"(\d+) contact candidates", output).group(1))
-        direct = measured(f"supported disc a/{level}", reps, "bench/supported_disc.edp", ["-h", repr(h)], f"{OUT}/direct_a{level}")
+        direct = measured(f"supported disc a/{level}", reps, "scripts/performance/supported_disc.edp", ["-h", repr(h)], f"{OUT}/direct_a{level}")
         solve = direct[0]["results"]["solve_time_s"]["computed"] if direct else float("nan")
         assembly = direct[0]["results"]["assembly_time_s"]["computed"] if direct else float("nan")
         row = {"level": f"a/{level}", "ndof": s["ndof"], "candidates": candidates, "iterations": s["ipopt_iterations"],
@@ -246,7 +246,7 @@ def sphere_study(levels, axisymmetric_levels=()):
     for level, axisymmetric in [(l, False) for l in levels] + [(l, True) for l in axisymmetric_levels]:
         out_dir = f"{OUT}/sphere_a{level}" + ("_axisymmetric" if axisymmetric else "")
         run = measured(f"sphere a/{level}", 1, "benchmarks/hertz_sphere.edp",
-                       ["-h", repr(A_SPHERE / level)] + (["-axisymmetric", "1"] if axisymmetric else []), out_dir)
+                       ["-h", repr(A_SPHERE / level)] + (["-dim", "axi"] if axisymmetric else []), out_dir)
         if run is None:
             continue
         s, wall, rss, _ = run
@@ -338,7 +338,7 @@ ORING_R = 0.52   # oring.edp's default radius
 
 def felupe_study(divisions, repeat):
     """The O-ring plates (15 steps to c = 0.3): ours (the default nodal form) against FElupe's P1 and
-    locking-free Q1/P0 (bench/felupe_oring.py, its own venv under results/peers) at each h = R/k."""
+    locking-free Q1/P0 (scripts/peers/felupe_oring.py, its own venv under results/peers) at each h = R/k."""
     rows = []
     for k in divisions:
         h = ORING_R / k
@@ -350,7 +350,7 @@ def felupe_study(divisions, repeat):
         row = {"level": f"R/{k}", "ndof": s["ndof"], "iterations": s["ipopt_iterations"], "solve_s": solve_seconds(s),
                "wall_s": run[1], "force": s["results"]["force_c0.3"]["computed"] / s["results"]["force_c0.3"]["reference"]}
         for formulation in ("p1", "mixed"):
-            best = peer_runs(["/usr/bin/python3", "bench/felupe_oring.py", "--h", f"R/{k}", "--formulation", formulation],
+            best = peer_runs(["/usr/bin/python3", "scripts/peers/felupe_oring.py", "--h", f"R/{k}", "--formulation", formulation],
                              repeat, "wall_s")
             if best:
                 force = best["results"]["force_c0.3"]
@@ -410,16 +410,16 @@ def main():
             "smoke": args.smoke, "repeat": repeat, "total_s": time.time() - start}
     out = os.path.join(ROOT, OUT)
     os.makedirs(out, exist_ok=True)
-    with open(os.path.join(out, "bench.json"), "w") as f:
+    with open(os.path.join(out, "performance.json"), "w") as f:
         json.dump(data, f, indent=1)
-    t1 = markdown.table(("h", "DOFs", "candidates", "IPOPT it.", "wall (s)", "mesh (s)", "solve (s)", "IPOPT internal CPU (s)",
+    t1 = md_tables.table(("h", "DOFs", "candidates", "IPOPT it.", "wall (s)", "mesh (s)", "solve (s)", "IPOPT internal CPU (s)",
                          "callbacks CPU (s)", "peak RSS (MB)", "a err", "p_max err", "direct solve (s)", "contact / direct solve",
                          "contact / (assembly + solve)"),
                         [(r["level"], r["ndof"], r["candidates"], r["iterations"], f"{r['wall_s']:.1f}", f"{r['mesh_s']:.1f}",
                           f"{r['solve_step_s']:.1f}", f"{r['ipopt_internal_cpu_s']:.1f}", f"{r['callbacks_cpu_s']:.1f}",
                           f"{r['peak_rss_mb']:.0f}", f"{r['a_error']:.1e}", f"{r['p_max_error']:.1e}", f"{r['direct_solve_s']:.2f}",
                           f"{r['contact_over_direct_solve']:.1f}", f"{r['contact_over_assembly_and_solve']:.1f}") for r in hertz])
-    t1b = markdown.table(("h", "DOFs", "condensed onto", "condensation (s)", "solve (s)", "wall (s)", "L2(p) err",
+    t1b = md_tables.table(("h", "DOFs", "condensed onto", "condensation (s)", "solve (s)", "wall (s)", "L2(p) err",
                           "full KKT path: IPOPT it.", "solve (s)", "wall (s)", "full / condensed solve",
                           "DOLFINx: DOFs", "SNES it.", "solve (s)", "wall (s)", "L2(p) err", "DOLFINx / ours, wall"),
                          [(r["level"], r["ndof"], f"{r['condensed_dofs']:.0f}", f"{r['condensation_s']:.1f}", f"{r['solve_step_s']:.2f}",
@@ -432,23 +432,23 @@ def main():
                            f"{r['dolfinx_wall_s']:.1f}" if "dolfinx_wall_s" in r else "-",
                            f"{r['dolfinx_l2_error']:.3e}" if "dolfinx_l2_error" in r else "-",
                            f"{r['dolfinx_over_ours_wall']:.2f}" if "dolfinx_over_ours_wall" in r else "-") for r in hertz])
-    t2 = markdown.table(("n", "DOFs", "IPOPT it.", "IPOPT solve (s)", "Newton it.", "Newton solve (s)", "IPOPT / Newton"),
+    t2 = md_tables.table(("n", "DOFs", "IPOPT it.", "IPOPT solve (s)", "Newton it.", "Newton solve (s)", "IPOPT / Newton"),
                         [(r["n"], r["ndof"], r["ipopt_iterations"], f"{r['ipopt_solve_s']:.1f}", r["newton_iterations"],
                           f"{r['newton_solve_s']:.1f}", f"{r['ipopt_over_newton']:.2f}") for r in cube])
-    t2b = markdown.table(("h", "DOFs", "contact solve", "it.", "solve (s)", "Newton it.", "Newton solve (s)", "contact solve / Newton",
+    t2b = md_tables.table(("h", "DOFs", "contact solve", "it.", "solve (s)", "Newton it.", "Newton solve (s)", "contact solve / Newton",
                           "U difference, rel. to max U", "a err", "IPOPT, whole problem: it.", "solve (s)", "/ Newton"),
                          [(r["level"], r["ndof"], r["contact_solve"], r["ipopt_iterations"], f"{r['ipopt_solve_s']:.2f}", r["newton_iterations"],
                            f"{r['newton_solve_s']:.2f}", f"{r['ipopt_over_newton']:.2f}", f"{r['rel_difference']:.1e}",
                            f"{r['a_error']:.1e}", r.get("full_iterations", "-"),
                            f"{r['full_solve_s']:.2f}" if "full_solve_s" in r else "-",
                            f"{r['full_over_newton']:.2f}" if "full_over_newton" in r else "-") for r in hertz_newton])
-    t3 = markdown.table(("h", "DOFs", "IPOPT it.", "wall (s)", "solve (s)", "peak RSS (MB)", "a err", "p_max err"),
+    t3 = md_tables.table(("h", "DOFs", "IPOPT it.", "wall (s)", "solve (s)", "peak RSS (MB)", "a err", "p_max err"),
                         [(r["level"], r["ndof"], r["iterations"], f"{r['wall_s']:.1f}", f"{r['solve_step_s']:.1f}",
                           f"{r['peak_rss_mb']:.0f}", f"{r['a_error']:.1e}", f"{r['p_max_error']:.1e}") for r in sphere])
-    t4 = markdown.table(("case", "h", "form", "DOFs", "IPOPT it.", "solve (s)", "error"),
+    t4 = md_tables.table(("case", "h", "form", "DOFs", "IPOPT it.", "solve (s)", "error"),
                         [(r["case"], r["level"], r["form"], r["ndof"], r["iterations"], f"{r['solve_s']:.1f}", f"{r['error']:.1e}")
                          for r in volumetric])
-    t5 = markdown.table(("h", "DOFs", "IPOPT it.", "solve (s)", "a err", "updated: it.", "re-solves", "solve (s)",
+    t5 = md_tables.table(("h", "DOFs", "IPOPT it.", "solve (s)", "a err", "updated: it.", "re-solves", "solve (s)",
                          "rigid: DOFs", "IPOPT it.", "solve (s)", "two bodies / rigid, solve time per DOF"),
                         [(r["level"], r["ndof"], r["iterations"], f"{r['solve_step_s']:.2f}", f"{r['a_error']:.1e}",
                           r["updated_iterations"], f"{r['updated_resolves']:.0f}", f"{r['updated_solve_s']:.2f}", r["rigid_ndof"],
@@ -458,7 +458,7 @@ def main():
         if f + "_solve_s" not in r:
             return ("-",) * 5
         return (r[f + "_ndof"], r[f + "_iterations"], f"{r[f + '_solve_s']:.2f}", f"{r[f + '_wall_s']:.2f}", f"{r[f + '_force']:.5f}")
-    t6 = markdown.table(("h", "DOFs", "it.", "solve (s)", "wall (s)", "F/Lindley at c = 0.3", "FElupe P1: DOFs", "Newton it.",
+    t6 = md_tables.table(("h", "DOFs", "it.", "solve (s)", "wall (s)", "F/Lindley at c = 0.3", "FElupe P1: DOFs", "Newton it.",
                          "solve (s)", "wall (s)", "F/Lindley", "Q1/P0: DOFs", "Newton it.", "solve (s)", "wall (s)", "F/Lindley",
                          "ours / P1, solve", "ours / Q1/P0, solve"),
                         [(r["level"], r["ndof"], r["iterations"], f"{r['solve_s']:.2f}", f"{r['wall_s']:.2f}", f"{r['force']:.5f}")
@@ -466,12 +466,12 @@ def main():
                          + (f"{r['solve_s'] / r['p1_solve_s']:.2f}" if "p1_solve_s" in r else "-",
                             f"{r['solve_s'] / r['mixed_solve_s']:.2f}" if "mixed_solve_s" in r else "-")
                          for r in peers_oring]) if peers_oring else "(make bench PEERS=1)"
-    t7 = markdown.table(("n", "DOFs", "penalty: factor entries", "per unknown", "wall (s)", "nodal saddle point: factor entries",
+    t7 = md_tables.table(("n", "DOFs", "penalty: factor entries", "per unknown", "wall (s)", "nodal saddle point: factor entries",
                          "per unknown", "wall (s)", "per unknown, nodal / penalty"),
                         [(r["n"], r["ndof"], f"{r['penalty_entries']:.3g}", f"{r['penalty_per_unknown']:.0f}", f"{r['penalty_wall_s']:.1f}",
                           f"{r['nodal_entries']:.3g}", f"{r['nodal_per_unknown']:.0f}", f"{r['nodal_wall_s']:.1f}",
                           f"{r['ratio_per_unknown']:.2f}") for r in rubber_fill])
-    t8 = markdown.table(("h", "DOFs", "SQP iterations per step", "factorizations", "mean (s)", "wall (s)", "wall / factorization",
+    t8 = md_tables.table(("h", "DOFs", "SQP iterations per step", "factorizations", "mean (s)", "wall (s)", "wall / factorization",
                          "factor entries per unknown", "peak RSS (MB)", "force at 0.2 R", "F / Hertz - 1 at 0.02 R"),
                         [(r["level"], r["ndof"], " ".join(str(i) for i in r["iterations"]), r["factorizations"],
                           f"{r['factorization_mean_s']:.2f}", f"{r['wall_s']:.0f}", f"{r['total_over_factorization']:.0f}",
@@ -488,12 +488,12 @@ def main():
             f"mesh-converged {ORING_CONVERGED}; Hertz, of a against Hertz)\n\n{t4}\n\n"
             f"Two elastic cylinders (small sliding; updated pairing) against one disc on a rigid cylinder, same h\n\n{t5}\n\n"
             f"O-ring between plates (15 steps to c = 0.3, nu = 0.499): ours (nodal form) against FElupe's P1 and Q1/P0 "
-            f"(bench/felupe_oring.py); converged F/Lindley at c = 0.3: 1.3260\n\n{t6}\n\n"
+            f"(scripts/peers/felupe_oring.py); converged F/Lindley at c = 0.3: 1.3260\n\n{t6}\n\n"
             f"3D rubber: factor entries of the nodal form's saddle point matrix against the element penalty form's, "
             f"3D Neo-Hookean block on its foundation, nu = 0.499\n\n{t7}\n\n"
             f"3D indentation (benchmarks/indentation.edp -dim 3, 10 steps to 0.2 R)\n\n{t8}")
     print("\n" + text)
-    markdown.write(os.path.join(out, "BENCH.md"), "Benchmark timings", text)
+    md_tables.write(os.path.join(out, "PERFORMANCE.md"), "Performance: timing studies", text)
     return 0 if (hertz and cube and hertz_newton and sphere and volumetric and two_bodies and rubber_fill and rubber_indentation
                  and (peers_oring or not args.peers)) else 1
 

@@ -19,7 +19,7 @@ BENCHMARKS = [
     ("hertz_circle_vertical", "benchmarks/hertz_circle.edp", ["-constraint", "vertical"]),
     ("clamped_square", "benchmarks/clamped_square.edp", []),
     ("hertz_sphere", "benchmarks/hertz_sphere.edp", []),
-    ("hertz_sphere_axisymmetric", "benchmarks/hertz_sphere.edp", ["-axisymmetric", "1"]),
+    ("hertz_sphere_axisymmetric", "benchmarks/hertz_sphere.edp", ["-dim", "axi"]),
     ("cylinder_axisymmetric", "benchmarks/cube.edp", ["-material", "mooney", "-dim", "axi"]),
     ("oring_groove", "benchmarks/oring.edp", ["-case", "groove"]),
     ("oring_plates", "benchmarks/oring.edp", ["-case", "plates"]),
