@@ -190,12 +190,21 @@ def test_linear_stiffness():
     check_script_cases("stiffness_check", 9)
 
 
+def registered_obstacles(include_dir=os.path.join(ROOT, "include")):
+    """The obstacle kinds listed in include/contact/obstacles.idp (read here, independently of FreeFEM)."""
+    text = open(os.path.join(include_dir, "contact", "obstacles.idp")).read()
+    line = re.search(r"^macro registeredObstacles\(apply\)(.*)// EOM", text, re.M).group(1)
+    return re.findall(r"apply\((\w+)\)", line)
+
+
 def test_obstacle_derivatives():
-    """Gradient and Hessian of every obstacle g(x) against central differences
-    (fd_obstacles.edp, h = 1e-5: truncation ~1e-10, tolerance 1e-8)."""
+    """Gradient and Hessian of every registered obstacle kind's g(x) against central differences,
+    and of a disc and a shifted disc (fd_obstacles.edp, h = 1e-5: truncation ~1e-10, tolerance 1e-8).
+    The expected cases come from the registry, so a new kind is checked without touching this file."""
     code, output, _ = run_driver("tests/fd_obstacles.edp", [], None)
     lines = [l for l in output.splitlines() if l.startswith("fd_obstacles obstacle=")]
-    check("fd_obstacles: 6 obstacle checks ran", len(lines) == 6, f"{len(lines)} lines")
+    expected = len(registered_obstacles()) + 2
+    check(f"fd_obstacles: {expected} obstacle checks ran", len(lines) == expected, f"{len(lines)} lines")
     for line in lines:
         check("fd_obstacles " + line.split()[1], line.endswith("PASS"), line)
     check("fd_obstacles exit code", code == 0, f"exit {code}")
@@ -1495,9 +1504,11 @@ def test_axisymmetric_sphere():
 def test_oring_torus():
     """The O-ring as a torus (oring_torus.edp), a face seal between plates, against the plane-strain
     ring of oring.edp -case plates on the same section mesh (h = R/24). Held at its mean radius
-    (-holdcentre 1), the force per unit circumference at c = 0.2 tends to the plane-strain force as the
-    ring radius grows: 3.2 % below it at r0 = 5R, 0.25 % at 20R, 0.008 % at 100R (measured); the test
-    asks for a decreasing difference and 1e-3 at 100R. Free, the ring expands (hoop stress ~ 0) and its
+    (-holdcentre 1: the section's centroid, a linear row), the force per unit circumference at c = 0.2
+    tends to the plane-strain force as the ring radius grows: 2.4 % from it at r0 = 5R, 0.15 % at 20R,
+    0.008 % at 100R (measured); the test asks for a decreasing difference and 1e-3 at 100R. The hold is
+    spread over the section: no stress concentration (it was one node: von Mises 12.6 next to it against
+    3.0 free; now 4.4, the hoop stress of a ring kept at its radius). Free, the ring expands (hoop stress ~ 0) and its
     force does not depend on r0: equal at 5R and 100R to 1e-3 (measured 2e-5), the section's radial
     shift growing in proportion to r0. The radial (rod) seal squeezed by a bore is stiffer than plane
     strain by a gap falling like R / r0: 6.7 % at 20R, 1.3 % at 100R (measured; hoop compression)."""
@@ -1510,6 +1521,12 @@ def test_oring_torus():
         check("oring torus held: the gap to plane strain shrinks as r0 grows", gaps[0] > gaps[1] > gaps[2], str(gaps))
         check("oring torus held at r0 = 100 R: plane strain's force to 1e-3", gaps[2] <= 1e-3, f"{gaps[2]:.1e}")
     free = {m: run_summary(f"oring torus free r0={m}", "benchmarks/oring_torus.edp", ["-meanradius", m]) for m in ("2.6", "52")}
+    if held["2.6"] and free["2.6"]:
+        h, f = held["2.6"]["results"], free["2.6"]["results"]
+        check("oring torus held at r0 = 5R: no concentration at the hold (von Mises within 2x the free ring's, J_min within 0.05)",
+              h["von_mises_max"]["computed"] <= 2 * f["von_mises_max"]["computed"]
+              and abs(h["J_min"]["computed"] - f["J_min"]["computed"]) <= 0.05,
+              f"{h['von_mises_max']['computed']:.3g} vs {f['von_mises_max']['computed']:.3g}; J {h['J_min']['computed']:.3f} vs {f['J_min']['computed']:.3f}")
     if all(free.values()):
         f5, f100 = (free[m]["results"]["force_c0.2"]["computed"] for m in ("2.6", "52"))
         check("oring torus free: the force does not depend on r0 (to 1e-3)", abs(f5 - f100) / f100 <= 1e-3, f"{abs(f5 - f100) / f100:.1e}")
@@ -1593,9 +1610,9 @@ def test_two_bodies():
             d = abs(updated["results"][q]["computed"] - exact["results"][q]["computed"]) / exact["results"][q]["computed"]
             check(f"two cylinders, updated pairing: rigid limit reproduces hertz_circle exact, {q} to 2e-4 (measured 5.7e-5, 1.9e-5)",
                   d <= 2e-4, f"{d:.1e}")
-        pc = updated["results"]["pairing_change"]["computed"] if "pairing_change" in updated["results"] else None
+        pc = updated["results"]["pairing_change_rel"]["computed"] if "pairing_change_rel" in updated["results"] else None
         check("two cylinders, updated pairing: settled (last gap change <= 1e-10 of the body size)",
-              pc is not None and pc <= 1e-10 * 2 * 1.2, f"{pc}")
+              pc is not None and pc <= 1e-10, f"{pc}")
 
 
 def check_no_tensile_pressure(label):
@@ -1621,7 +1638,7 @@ def test_sliding_disc():
     size = 3.0
     check("sliding disc: IPOPT converged every step", s["ipopt_status"] == "Solve_Succeeded" and s["complete"], s["ipopt_status"])
     for q, bound in (("force_balance_rel_error", 1e-8), ("disc_balance_rel_error", 1e-8), ("block_balance_rel_error", 1e-8),
-                     ("action_reaction_rel_error", 1e-12), ("max_penetration", 1e-10 * size), ("pairing_change", 1e-10 * size),
+                     ("action_reaction_rel_error", 1e-12), ("max_penetration", 1e-10 * size), ("pairing_change_rel", 1e-10),
                      ("sideways_force_ratio", 1e-3), ("force_ripple", 1e-2)):
         when = "last step" if q.startswith(("disc_", "block_")) else "worst step"
         check(f"sliding disc: {q} <= {bound:.0e} ({when})", r[q]["computed"] <= bound, f"{r[q]['computed']:.1e}")
@@ -1641,8 +1658,8 @@ def flange_checks(label, s, size):
           f"{r['action_reaction_rel_error']['computed']:.1e}")
     for q in ("ring_balance_rel_error", "flange_balance_rel_error", "force_balance_rel_error"):
         check(f"{label}: {q} <= 1e-8", r[q]["computed"] <= 1e-8, f"{r[q]['computed']:.1e}")
-    for q in ("max_penetration", "pairing_change"):
-        check(f"{label}: {q} <= 1e-10 of the size", r[q]["computed"] <= 1e-10 * size, f"{r[q]['computed']:.1e}")
+    for q, scale in (("max_penetration", size), ("pairing_change_rel", 1.0)):
+        check(f"{label}: {q} <= 1e-10 of the size", r[q]["computed"] <= 1e-10 * scale, f"{r[q]['computed']:.1e}")
     check_no_tensile_pressure(label)
     # activity from the multipliers (issue 26): the last step's pressure.csv had every row inactive
     # with non-zero pressures, and the half-width reported 0
