@@ -21,8 +21,10 @@ benchmark-%:
 convergence-quick:
 	@$(PYTHON) scripts/hertz_convergence.py --levels 10,20,40,80 --cases plane,circle_vertical,circle_exact
 
+# pytest over tests/test_*.py, one worker per core, the slowest tests listed; `make test K=hertz`
+# runs the tests whose names contain hertz
 test: deps
-	$(PYTHON) tests/run_tests.py
+	$(PYTHON) -m pytest tests -n $(JOBS) --durations=15 -p no:cacheprovider $(if $(K),-k $(K))
 
 # Hertz benchmarks refined from h = a/10 to a/160 (a few minutes): results/hertz_convergence.md
 convergence: deps

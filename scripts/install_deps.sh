@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what the suite needs on Debian/Ubuntu, skipping what is already there:
 # FreeFEM with its plugins (ff-Ipopt, iovtk, msh3, gsl) and its plugin compiler ff-c++ (with g++:
-# the suite's own plugins, plugin/*.cpp), gmsh, python3 with matplotlib, GNU time
+# the suite's own plugins, plugin/*.cpp), gmsh, python3 with matplotlib, pytest and pytest-xdist
+# (the tests), GNU time
 # (the bench's peak-memory measurement), sequential MUMPS's and METIS's headers (the condensed solve's plugin),
 # and OpenBLAS: Debian's
 # MUMPS (IPOPT's linear solver) otherwise runs on the reference BLAS, and the factorisations
@@ -35,6 +36,9 @@ dpkg -s libmumps-seq-dev >/dev/null 2>&1 || missing+=(libmumps-seq-dev)
 dpkg -s libmetis-dev >/dev/null 2>&1 || missing+=(libmetis-dev)
 # the report's figures: matplotlib for Debian's python3 (the Makefile runs /usr/bin/python3)
 dpkg -s python3-matplotlib >/dev/null 2>&1 || missing+=(python3-matplotlib)
+# the tests: pytest, and pytest-xdist to run them on every core
+dpkg -s python3-pytest >/dev/null 2>&1 || missing+=(python3-pytest)
+dpkg -s python3-pytest-xdist >/dev/null 2>&1 || missing+=(python3-pytest-xdist)
 
 # --peers (make bench PEERS=1): DOLFINx for scripts/peers/dolfinx_hertz.py, and python3-venv for the venv in
 # which scripts/peers/felupe_oring.py installs FElupe with pip

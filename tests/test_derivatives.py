@@ -1,0 +1,135 @@
+"""Hand-written derivatives against finite differences: the .edp check scripts (each line a case), the laws and the obstacles from their registries."""
+
+import pytest
+
+from helpers import *  # noqa: F401,F403 (check, out, run_driver, read_summary, ROOT, TMP and the shared helpers)
+
+# The check scripts: tests/<script>.edp prints one line per case ending in PASS or FAIL and exits 1 on
+# a failure. (expected number of cases, the prefix of a case's line); the laws' and the obstacles'
+# counts come from their registries, so a new law or obstacle kind is checked without touching this.
+#   fd_laws: every registered law's P and A against central differences of psi and P, in 2D and 3D
+#     (truncation ~h^2 = 1e-10: bound 1e-8), and two materials on two regions
+#   fd_obstacles: every registered obstacle kind's gradient and Hessian, a disc and a shifted disc
+#     (h = 1e-5: truncation ~1e-10, bound 1e-8)
+#   fd_volumetric: the nodal volumetric treatment's gradient, Hessian, constraint Jacobian and
+#     curvature, column by column (Mooney-Rivlin 2D and 3D, penalty and exact incompressibility,
+#     linear elasticity's nodal form, the axisymmetric energy in every form; measured 1e-10..2e-9,
+#     bound 1e-8); in plane strain the plugin's coupled tangent against the varf and FreeFEM's
+#     products to 1e-12
+#   fd_pairs: the contact pairs' rows against finite differences of the gap
+#   stiffness_check: linear elasticity's Lame-form Hessian against the generic tangent (P1 and P2
+#     in 2D, P1 in 3D and axisymmetric, whole and as the lower triangle, moduli varying per element),
+#     and a hyperelastic tangent and forces from the plugin against their varfs: equal to 1e-12
+SCRIPTS = {
+    "fd_laws": (lambda: 2 * len(registered_laws()) + 2, None),
+    "fd_obstacles": (lambda: len(registered_obstacles()) + 2, "fd_obstacles obstacle="),
+    "fd_volumetric": (lambda: 27, "fd_volumetric case="),
+    "fd_pairs": (lambda: 12, None),
+    "stiffness_check": (lambda: 9, None),
+}
+
+
+@pytest.mark.parametrize("script", sorted(SCRIPTS))
+def test_check_script(script):
+    expected, prefix = SCRIPTS[script]
+    check_script_cases(script, expected(), prefix=prefix)
+
+
+def test_law_derivatives():
+    """Every registered law is among fd_laws.edp's cases, in 2D and in 3D (test_check_script runs them)."""
+    laws = registered_laws()
+    code, output, _ = run_driver("tests/fd_laws.edp", [], None)
+    for law in laws:
+        check(f"fd_laws: law {law} checked in 2D and 3D",
+              all(f"fd_laws dim={d} law={law} " in output for d in (2, 3)))
+
+
+def test_new_law_recipe():
+    """The README's recipe for a new law, followed in a copy of include/: one new file (here the
+    Mooney-Rivlin law renamed plantedLaw, with one planted error in d2W/dJ2) and one registration
+    entry. The finite-difference test must pick the new law up with its own parameters and catch
+    the planted error in its Hessian only, while the registered laws still pass."""
+    work = out("new law")
+    include = os.path.join(work, "include")
+    shutil.copytree(os.path.join(ROOT, "include"), include)
+    law = open(os.path.join(include, "laws", "mooneyRivlin.idp")).read()
+    for old, new in (("mooneyRivlin", "plantedLaw"), ("MooneyRivlin", "PlantedLaw"), ("lawC10", "plantedC10"),
+                     ("lawC01", "plantedC01")):
+        law = law.replace(old, new)   # a law of its own: its own names and parameters
+    planted = law.replace("28./9*plantedC01", "28./8*plantedC01")
+    check("new law: the planted error is in the file", planted != law)
+    with open(os.path.join(include, "laws", "plantedLaw.idp"), "w") as f:
+        f.write(planted)
+    registry = os.path.join(include, "laws", "registry.idp")
+    text = open(registry).read()
+    with open(registry, "w") as f:
+        f.write(text.replace("apply(linearElastic) // EOM", "apply(linearElastic) apply(plantedLaw) // EOM"))
+    check("new law: registered", "plantedLaw" in registered_laws(include))
+    with open(os.path.join(work, "freefem++.pref"), "w") as f:
+        f.write(f'loadpath += "/usr/lib/freefem++"\nloadpath += "{ROOT}/plugin"\nincludepath += "{include}"\nverbosity = 0\n')
+    code, output, _ = run_driver(os.path.join(ROOT, "tests", "fd_laws.edp"), [], None, cwd=work)
+    lines = [l for l in output.splitlines() if l.startswith("fd_laws dim=")]
+    planted_lines = [l for l in lines if "law=plantedLaw " in l]
+    check("new law: checked in 2D and 3D with the others", len(lines) == 2 * len(registered_laws(include)) + 2
+          and len(planted_lines) == 2, f"{len(lines)} lines")
+    check("new law: the planted Hessian error is caught (FAIL), the gradient passes",
+          len(planted_lines) == 2 and all(l.endswith("FAIL") and float(re.search(r"gradient_rel_error=(\S+)", l).group(1)) <= 1e-8
+                                          for l in planted_lines), str(planted_lines))
+    check("new law: the registered laws still pass", all(l.endswith("PASS") for l in lines if l not in planted_lines))
+    check("new law: fd_laws exits non-zero", code != 0, f"exit {code}")
+
+
+def test_law_recipe_from_docs():
+    """Issue 25: docs/adding_a_law.md followed literally. Its Yeoh example file is written to
+    include/laws/yeoh.idp in a copy of the suite and registered as the page says; the finite-difference
+    test checks it in 2D and 3D (1e-8, as every law); and with C20 = C30 = 0 it is the Neo-Hookean law,
+    so the O-ring plates (a non-homogeneous, nearly incompressible problem where a law that kept its
+    own volumetric term would lock) give Neo-Hookean's plate force under the default volumetric form at
+    nu = 0.4999 and 0.5: both runs solve the same problem to -tol 1e-10, bound 1e-9 (measured: equal
+    to all 16 digits). A copy of the file without its setVolumetricModulus call is refused: exit 2,
+    one error line naming setVolumetricModulus."""
+    doc = open(os.path.join(ROOT, "docs", "adding_a_law.md")).read()
+    m = re.search(r"<!-- law file: (\S+) -->\n```freefem\n(.*?)```", doc, re.S)
+    check("law recipe: docs/adding_a_law.md holds the example law file", m is not None)
+    if m is None:
+        return
+    work, include = suite_copy("law recipe yeoh")
+    law_text = m.group(2)
+    with open(os.path.join(work, m.group(1)), "w") as f:
+        f.write(law_text)
+    registry = os.path.join(include, "laws", "registry.idp")
+    text = open(registry).read()
+    with open(registry, "w") as f:
+        f.write(text.replace(") // EOM", ") apply(yeoh) // EOM", 1))
+    check("law recipe: yeoh registered", "yeoh" in registered_laws(include))
+    code, output, _ = run_driver(os.path.join(ROOT, "tests", "fd_laws.edp"), [], None, cwd=work)
+    lines = [l for l in output.splitlines() if l.startswith("fd_laws dim=") and "law=yeoh " in l]
+    check("law recipe: the Yeoh law's P and A against finite differences in 2D and 3D (1e-8)",
+          len(lines) == 2 and all(l.endswith("PASS") for l in lines) and code == 0, str(lines))
+    driver = open(os.path.join(ROOT, "benchmarks", "oring.edp")).read()
+    yeoh_driver = driver.replace('setMooneyRivlin("neohookean", C10, 0, nu);', "setYeoh(C10, 0, 0, nu);")
+    check("law recipe: the O-ring driver's law line replaced", yeoh_driver != driver)
+    with open(os.path.join(work, "oring_yeoh.edp"), "w") as f:
+        f.write(yeoh_driver)
+    common = ["-case", "plates", "-cmax", "0.2", "-steps", "5", "-tol", "1e-10"]
+    for nu in ("0.4999", "0.5"):
+        o_yeoh, o_nh = out(f"law recipe yeoh nu {nu}"), out(f"law recipe neohookean nu {nu}")
+        code_y, _, _ = run_driver(os.path.join(work, "oring_yeoh.edp"), common + ["-nu", nu], o_yeoh, cwd=work)
+        code_n, _, _ = run_driver("benchmarks/oring.edp", common + ["-nu", nu], o_nh)
+        y, n = read_summary(o_yeoh), read_summary(o_nh)
+        if code_y != 0 or code_n != 0 or y is None or n is None:
+            check(f"law recipe nu={nu}: both runs complete", False, f"exit {code_y}, {code_n}")
+            continue
+        fy, fn = y["results"]["force_c0.2"]["computed"], n["results"]["force_c0.2"]["computed"]
+        check(f"law recipe nu={nu}: Yeoh with C20 = C30 = 0 gives Neo-Hookean's plate force to 1e-9",
+              abs(fy - fn) <= 1e-9 * fn, f"{fy:.16g} vs {fn:.16g}")
+    forgetful = law_text.replace("  setVolumetricModulus((nu == 0.5 ? 0. : 2*C10/(1 - 2*nu)), nu);\n", "")
+    check("law recipe: the copy without setVolumetricModulus differs", forgetful != law_text)
+    with open(os.path.join(work, m.group(1)), "w") as f:
+        f.write(forgetful)
+    o = out("law recipe forgetful")
+    code, output, _ = run_driver(os.path.join(work, "oring_yeoh.edp"), common, o, cwd=work)
+    errors = [l for l in output.splitlines() if l.startswith("error:")]
+    check("law recipe: a law without setVolumetricModulus is refused (exit 2, one line naming it, no summary)",
+          code == 2 and len(errors) == 1 and "setVolumetricModulus" in errors[0] and not os.path.exists(os.path.join(o, "summary.json")),
+          f"exit {code}: {errors}")

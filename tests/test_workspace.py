@@ -1,0 +1,153 @@
+"""The suite as a user meets it: the output contract, the working folder, headless runs, the template in a workspace of its own, the external programs."""
+
+from helpers import *  # noqa: F401,F403 (check, out, run_driver, read_summary, ROOT, TMP and the shared helpers)
+
+
+def test_output_contract():
+    o = out("contract")
+    # IPOPT on the whole problem (without contact rows the default is the condensed Newton, no IPOPT)
+    code, _, _ = run_driver("benchmarks/cube.edp", ["-n", "2", "-condense", "no"], o)
+    s = read_summary(o) or {}
+    for key in ("benchmark", "parameters", "ndof", "ipopt_status", "ipopt_iterations", "wall_time_s", "results"):
+        check(f"summary.json has '{key}'", key in s)
+    params = s.get("parameters", {})
+    check("summary.json lists every parameter", all(k in params for k in
+          ("material", "C10", "C01", "nu", "pressure", "dim", "n", "steps", "out")), str(sorted(params)))
+    vtu = os.path.join(o, "cube.vtu")
+    text = open(vtu, errors="replace").read() if os.path.exists(vtu) else ""
+    check("cube.vtu holds displacement, J, von Mises",
+          all(f'Name="{n}"' in text for n in ("displacement", "J", "von_Mises")))
+    # its values (written from the arrays by plugin/vtu_writer.cpp, float32): the block's deformation
+    # is homogeneous, so the largest |u_y| is the summary's w, J is J_min in every element and the
+    # largest von Mises is the summary's, each to float32 rounding (6e-8; bound 1e-6)
+    if text:
+        from vtu import read_vtu
+        import numpy as np
+        points, cells, types, pdata, cdata = read_vtu(vtu)
+        r = s.get("results", {})
+        dim = 3 if s.get("parameters", {}).get("dim") == 3 else 2
+        w = r.get("w", {}).get("computed", float("nan"))
+        check("cube.vtu: one displacement per vertex", len(points) == s.get("ndof", 0) // dim, f"{len(points)} points")
+        check("cube.vtu: largest |u_y| = w to 1e-6", abs(np.abs(pdata["displacement"][:, 1]).max() - w) <= 1e-6 * w,
+              f"{np.abs(pdata['displacement'][:, 1]).max():.9g} vs {w:.9g}")
+        jmin = r.get("J_min", {}).get("computed", float("nan"))
+        check("cube.vtu: J = J_min in every element to 1e-6", np.abs(cdata["J"] - jmin).max() <= 1e-6, f"{np.abs(cdata['J'] - jmin).max():.1e}")
+        vm = r.get("von_mises_max", {}).get("computed", float("nan"))
+        check("cube.vtu: largest von Mises = the summary's to 1e-6", abs(cdata["von_Mises"].max() - vm) <= 1e-6 * vm,
+              f"{cdata['von_Mises'].max():.9g} vs {vm:.9g}")
+    logs = [f for f in os.listdir(o) if f.startswith("ipopt_step")] if os.path.isdir(o) else []
+    check("IPOPT log is in the output folder", len(logs) == 1, str(logs))
+
+
+def test_working_folder_untouched():
+    """ff-Ipopt writes ipopt.out and reads ipopt.opt in the working folder: a hostile
+    ipopt.opt (max_iter 0) must be ignored and nothing written next to it."""
+    work = out("workdir")
+    os.makedirs(work)
+    with open(os.path.join(work, "freefem++.pref"), "w") as f:
+        f.write('loadpath += "/usr/lib/freefem++"\nloadpath += "%s/plugin"\nincludepath += "%s/include"\nverbosity = 0\n'
+                % (ROOT, ROOT))
+    with open(os.path.join(work, "ipopt.opt"), "w") as f:
+        f.write("max_iter 0\n")
+    before = set(os.listdir(work))
+    code, output, _ = run_driver(os.path.join(ROOT, "benchmarks/cube.edp"), ["-n", "2"], os.path.join(work, "o"), cwd=work)
+    after = set(os.listdir(work)) - {"o"}
+    check("ipopt.opt in the working folder is not read", code == 0, output.strip().splitlines()[-1:])
+    check("no stray files in the working folder", after == before, str(after - before))
+
+
+def test_headless():
+    """The README's literal command, the graphical FreeFem++ without -nw, on a machine without a
+    display: with its output to a file and to a pipe it must exit 0 with the whole output (it
+    used to die with SIGPIPE, exit 141, when ffglut could not open a display)."""
+    o = out("headless file")
+    log = os.path.join(TMP, "headless.log")
+    with open(log, "w") as f:
+        code = subprocess.run(["FreeFem++", "benchmarks/hertz_plane.edp", "-out", o], cwd=ROOT, env=headless_env(),
+                              stdout=f, stderr=subprocess.STDOUT).returncode
+    text = open(log).read()
+    s = read_summary(o)
+    check("headless, output to a file: exit 0", code == 0, f"exit {code}")
+    check("headless, output to a file: the results are in the output and summary.json is complete",
+          "  a = " in text and s is not None and s["complete"], text.strip().splitlines()[-1:])
+    proc = subprocess.run(["FreeFem++", "benchmarks/cube.edp", "-out", out("headless pipe")], cwd=ROOT, env=headless_env(),
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    check("headless, output to a pipe: exit 0 with the results", proc.returncode == 0 and "  w = " in proc.stdout,
+          f"exit {proc.returncode}")
+
+
+def test_template_workspace():
+    """docs/writing_your_own_problem.md: `make workspace DIR=...` (scripts/workspace.sh) copies the
+    template driver into a folder outside the suite and writes the one setting (freefem++.pref);
+    the template then runs there, and so does a suite driver given by its path. The template's
+    own checks: force balance to 1e-8 of the indentation force (measured ~4e-13), no penetration."""
+    work = os.path.join(TMP, "my_contact_work")
+    proc = subprocess.run(["bash", os.path.join(ROOT, "scripts", "workspace.sh"), work], stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT, text=True)
+    check("workspace: created with the template and freefem++.pref", proc.returncode == 0
+          and os.path.exists(os.path.join(work, "my_problem.edp")) and os.path.exists(os.path.join(work, "freefem++.pref")),
+          proc.stdout.strip().splitlines()[-1:])
+    code, output, _ = run_driver("my_problem.edp", ["-depth", "0.2", "-steps", "2", "-h", "0.2"], os.path.join(work, "o"), cwd=work)
+    s = read_summary(os.path.join(work, "o"))
+    check("workspace: the template runs in its own folder", code == 0 and s is not None and s["complete"],
+          output.strip().splitlines()[-2:])
+    if s:
+        r = s["results"]
+        check("workspace: the template's indentation force balances to 1e-8, no penetration",
+              r["force_balance_rel_error"]["computed"] <= 1e-8 and r["max_penetration"]["computed"] <= 1e-10 * 2
+              and r["indentation_force"]["computed"] > 0, f"{r['force_balance_rel_error']['computed']:.1e}")
+    # the template takes -nu 0.5 (exact incompressibility, its default -volumetric nodal); it used to
+    # tell the user to add -volumetric nodal, then reject it as an unknown parameter
+    code, output, _ = run_driver("my_problem.edp", ["-depth", "0.2", "-steps", "2", "-h", "0.2", "-nu", "0.5"],
+                                 os.path.join(work, "o_incompressible"), cwd=work)
+    s = read_summary(os.path.join(work, "o_incompressible"))
+    check("workspace: the template runs at -nu 0.5, balanced to 1e-8", code == 0 and s is not None and s["complete"]
+          and s["results"]["force_balance_rel_error"]["computed"] <= 1e-8, output.strip().splitlines()[-2:])
+    code, output, _ = run_driver(os.path.join(ROOT, "benchmarks", "hertz_plane.edp"), ["-h", "0.004"], os.path.join(work, "hertz"),
+                                 cwd=work)
+    check("workspace: a suite driver runs from that folder by its path", code == 0, output.strip().splitlines()[-1:])
+
+
+def test_external_commands():
+    """Every external program the Makefile, scripts, tests and drivers call is either provided by
+    scripts/install_deps.sh or part of a minimal Debian (tests/check_commands.py). On a bare Debian
+    root `make test` used to fail on /usr/bin/time, which nothing installed."""
+    import check_commands
+    missing, found = check_commands.unprovided()
+    check(f"external commands: the {len(found)} programs used are all provided", not missing, str(missing))
+
+
+def test_include_layout():
+    """The layers (issue 27): every include/ file states what it needs, is guarded against a second
+    inclusion (IFMACRO(!included<Path>) ... ENDIFMACRO) and includes others only above its own
+    code; contact does not reach into the body's rows; a driver that includes the prelude twice
+    still runs; docs/reserved_names.md lists the names include/ defines (scripts/reserved_names.py)."""
+    import glob as _glob
+    files = sorted(_glob.glob(os.path.join(ROOT, "include", "**", "*.idp"), recursive=True))
+    check(f"layout: {len(files)} include files found", len(files) >= 40, str(len(files)))
+    for path in files:
+        rel = os.path.relpath(path, os.path.join(ROOT, "include"))
+        text = open(path).read()
+        guard = "included" + "".join(p[:1].upper() + p[1:] for p in re.split(r"[\W_]", rel[:-4]))
+        code = [l for l in text.splitlines() if l.strip() and not l.startswith("//")]
+        check(f"layout {rel}: states what it needs", "Needs:" in text)
+        check(f"layout {rel}: guarded", code[:2] == [f"IFMACRO(!{guard})", f"macro {guard} 1 // EOM"]
+              and code[-1] == "ENDIFMACRO", str(code[:2] + code[-1:]))
+        includes = [i for i, l in enumerate(code) if l.startswith("include ")]
+        # the registries include their members from a macro list at their top (laws, obstacles)
+        body_start = next((i for i, l in enumerate(code[2:], 2) if not l.startswith(("include ", "load ", "macro ", "registered"))), len(code))
+        check(f"layout {rel}: includes at the top", all(i < body_start for i in includes), str(includes))
+    for path in _glob.glob(os.path.join(ROOT, "include", "contact", "**", "*.idp"), recursive=True):
+        text = open(path).read()
+        check(f"layout {os.path.relpath(path, ROOT)}: no reference to the body's volumetric rows",
+              not re.search(r"volumetric(RowCount|FirstRow|Constrained)|vertexCount", text))
+    work = out("include twice")
+    os.makedirs(work)
+    script = os.path.join(work, "twice.edp")
+    open(script, "w").write('include "prelude.idp"\ninclude "prelude.idp"\ninclude "core/params.idp"\n'
+                            'paramsDone();\ncout << "twice ok" << endl;\n')
+    code, output, _ = run_driver(script, [], None)
+    check("layout: a driver including the prelude twice runs", code == 0 and "twice ok" in output, output[-300:])
+    proc = subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "reserved_names.py")], stdout=subprocess.PIPE, text=True)
+    check("layout: docs/reserved_names.md is current (scripts/reserved_names.py)",
+          proc.returncode == 0 and proc.stdout == open(os.path.join(ROOT, "docs", "reserved_names.md")).read())
