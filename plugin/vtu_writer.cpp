@@ -1,5 +1,5 @@
 // vtu_writer: the results' ParaView file (.vtu) for P1 fields, written from the coefficient arrays
-// (built by `make` with ff-c++, loaded by include/solver.idp).
+// (built by `make` with ff-c++, loaded by include/model.idp).
 //
 // Why: FreeFEM's savevtk (iovtk) evaluates each field through its finite-element machinery, cell
 // by cell: 2.75 s for the 3D Hertz sphere's 391k tetrahedra (201k dofs), against 0.2 s here, where
@@ -12,7 +12,7 @@
 // savevtk's: XML UnstructuredGrid, inline base64 "binary" arrays each led by its 4-byte length,
 // Float32 values, the element cells only (triangles, VTK type 5, or tetrahedra, type 10).
 // scripts/vtu.py reads it for the report's figures. Returns the number of cells, or minus the errno
-// of a write that failed (a full disk): the script says so (include/solver.idp).
+// of a write that failed (a full disk): the script says so (include/model.idp).
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
 #include <cerrno>

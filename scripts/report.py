@@ -459,7 +459,7 @@ def sections():
         ("Hertz contact on a rigid cylinder (preprint 4.2.2)", ["hertz_circle_exact", "hertz_circle_linearized", "hertz_circle_vertical"],
          "The disc on a convex rigid cylinder given as a cubic spline. Hertz's own vertical gap meets Hertz like the "
          "plane; the exact form (42) and its linearisation (43) agree with each other to 6e-6 and sit 0.3-0.4 % "
-         "from Hertz, because they keep the sliding term psi'(X1) u1 that Hertz drops (README).", [
+         "from Hertz, because they keep the sliding term psi'(X1) u1 that Hertz drops (docs/benchmarks/hertz.md).", [
             lambda: fig_hertz_pressure(["hertz_circle_exact", "hertz_circle_linearized", "hertz_circle_vertical"],
                                        "hertz_circle_pressure.png",
                                        f"Hertz, disc on a rigid cylinder (spline): the three constraint forms\nE = 2.1e5 Pa, nu = 0.3, R1 = 1 m, R2 = {R2:g} m, f = 250 Pa, h = a/30"),
@@ -468,7 +468,7 @@ def sections():
                                  [arc(R2, f"rigid cylinder R2 = {R2:g} m")], zoom=zoom(circle_a))]),
         ("3D Hertz: a hemisphere on a rigid plane", ["hertz_sphere", "hertz_sphere_axisymmetric"],
          "A quarter hemisphere of tetrahedra on a rigid plane: Hertz's point contact within 1 % on this coarse "
-         "mesh (h = a/8); the README's performance section has finer meshes. The same sphere from its 2D meridian "
+         "mesh (h = a/8); docs/performance.md has finer meshes. The same sphere from its 2D meridian "
          "section (-dim axi, the hoop stretch and the 2 pi r measure) meets Hertz within 0.21 % in under a "
          "second.", [
             lambda: fig_hertz_pressure(["hertz_sphere", "hertz_sphere_axisymmetric"], "hertz_sphere_pressure.png",

@@ -33,7 +33,7 @@ def draw_hertz(rng):
     a_over_R = rng.uniform(0.02, 0.08)             # small strain: where Hertz's theory holds
     f = (a_over_R * R) ** 2 * math.pi * E / (8 * R ** 2 * (1 - nu ** 2))
     a = a_over_R * R
-    # the nodal form's contact pressure alternates node to node on coarse meshes (README, "Rubber":
+    # the nodal form's contact pressure alternates node to node on coarse meshes (docs/rubber.md:
     # L2 of p 1.2 % at a/30, 0.5 % at a/45, 0.3 % at a/60 for nu = 0.499): finer there
     h = a / (rng.uniform(30, 45) if nu < 0.45 else rng.uniform(45, 60))
     return "benchmarks/hertz_plane.edp", ["-E", f"{E:.6g}", "-nu", f"{nu:.4f}", "-R", f"{R:.4f}",

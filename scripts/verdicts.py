@@ -1,7 +1,7 @@
 """The verdict of every quantity the benchmarks report: what its reference is, what kind of
 reference that is, and the bound the test suite holds it to. The report (scripts/report.py)
 prints a verdict from this table for each default run of `make`, and the tests
-(tests/run_tests.py) take their bounds from it, so the two cannot drift apart.
+(tests/test_*.py) take their bounds from it, so the two cannot drift apart.
 
 Kinds of reference:
   exact           an exact solution of the discrete problem (P1 reproduces a homogeneous state),
@@ -66,7 +66,7 @@ _add(_HERTZ_TIGHT, ["a", "p_max"],
      Check("analytic", 3e-3, note="Hertz; measured 3e-4..1.6e-3: the finite disc, its far field and h = a/30"))
 _add(_HERTZ_TIGHT, ["pressure_l2_rel_error"], Check("analytic", 1e-2, "value", note="L2 error of p against Hertz's ellipse"))
 _add(["hertz_plane_nu0.4999"], ["pressure_l2_rel_error"],
-     Check("info", note="0.94 %; near nu = 1/2 the nodal pressures alternate by about 2 % node to node (README)"))
+     Check("info", note="0.94 %; near nu = 1/2 the nodal pressures alternate by about 2 % node to node (docs/rubber.md)"))
 _add(["hertz_circle_exact", "hertz_circle_linearized"], ["a", "p_max"],
      Check("analytic", 1e-2, note="(42) and (43) keep the term psi'(X1) u1 that Hertz drops: they sit 0.3-0.4 % away"))
 _add(["hertz_sphere"], ["a", "p_max"], Check("analytic", 3e-2, note="3D Hertz on a coarse mesh (h = a/8)"))
@@ -118,7 +118,7 @@ _add(["oring_plates"], ["force_c0.2"],
                 "1.3130, 1.3129 for h = R/12..R/96)"))
 _add(["oring_plates"], ["force_c0.1", "force_c0.3"], Check("info", note="Lindley's empirical law"))
 _add(["oring_torus"], ["force_c0.1", "force_c0.2", "force_c0.3"],
-     Check("info", note="Lindley's empirical law; the free torus meets it to 0.4 % at c = 0.2 (README)"))
+     Check("info", note="Lindley's empirical law; the free torus meets it to 0.4 % at c = 0.2 (docs/benchmarks/oring.md)"))
 _add(["oring_groove"], ["floor_ceiling_balance_rel_error", "walls_balance_rel_error", "floor_wall_symmetry_rel_error"],
      Check("balance", 1e-8, "value", note="opposite faces balance; the problem is symmetric about y = x"))
 
@@ -135,7 +135,7 @@ _add(["indentation_3d"], ["contact_radius_small_depth"],
 _add(["indentation_axi", "indentation_3d"], ["bottom_pull_rel"],
      Check("exact", 1e-8, "value", note="the bottom pushes on the plane at every node (u_z = 0 models the frictionless plane)"))
 
-PLATEN_REFERENCE = 0.6462   # platen force, n = 40, 80, 160 Richardson, observed order 0.92 (README, platen block)
+PLATEN_REFERENCE = 0.6462   # platen force, n = 40, 80, 160 Richardson, observed order 0.92 (docs/benchmarks/platen_block.md)
 _add(["platen_block"], ["platen_force"],
      Check("mesh-converged", 3e-2, note="n = 40, 80, 160, Richardson: 0.6462 (order 0.92 in h)"))
 

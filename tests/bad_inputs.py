@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Bad input for every driver: the cases the test suite checks (one `error:` line naming the
-problem, a non-zero exit, no summary.json) and the table in the README, printed by
+problem, a non-zero exit, no summary.json) and the table in docs/robustness.md, printed by
     python3 tests/bad_inputs.py"""
 
 import os

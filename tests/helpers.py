@@ -123,9 +123,9 @@ def homogeneous_case(label, args):
 
 def hertz_case(label, script, args, bound_a=verdicts.bound("hertz_plane", "a"),
                bound_l2=verdicts.bound("hertz_plane", "pressure_l2_rel_error"), size=lambda p: p["R"]):
-    """Runs a Hertz driver; a and p_max (fit of p^2 against x^2, README) within bound_a of
+    """Runs a Hertz driver; a and p_max (fit of p^2 against x^2, docs/benchmarks/hertz.md) within bound_a of
     Hertz's formulas (measured 3e-4 .. 1.6e-3 over the cases below: the finite disc, its far
-    field at hmax = R/20 and h = a/30, README), L2 of p within bound_l2 (edge of contact: ~0.2 % .. 0.7 % at h = a/30),
+    field at hmax = R/20 and h = a/30, docs/benchmarks/hertz.md), L2 of p within bound_l2 (edge of contact: ~0.2 % .. 0.7 % at h = a/30),
     force balance <= 1e-8 (solver tolerance 1e-8 on scaled stationarity: measured ~1e-13)
     and no penetration beyond 1e-10 R (bound relaxation is off: measured 0); R is size(parameters)."""
     s = run_summary(label, script, args)

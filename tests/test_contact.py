@@ -95,7 +95,7 @@ def test_hertz_near_incompressible():
     h = a/60: a and p_max within the same 0.3 % of Hertz as at nu = 0.3 (measured 0.02 %..0.07 %),
     the L2 error of p within the same 1 % (measured 0.15 %..0.48 %), force balance and penetration
     as always. (At the default a/30 the nodal contact pressures alternate by ~2 % node to node near
-    nu = 1/2 and L2 reaches 1.2-1.7 %: README.) The penalty form at nu = 0.4999 misses a by 17 %."""
+    nu = 1/2 and L2 reaches 1.2-1.7 %: docs/rubber.md.) The penalty form at nu = 0.4999 misses a by 17 %."""
     for nu in ("0.49", "0.499", "0.4999", "0.5"):
         hertz_case(f"hertz plane nodal nu={nu} h=a/60", "benchmarks/hertz_plane.edp",
                    ["-volumetric", "nodal", "-nu", nu, "-h", "0.00083"])
@@ -257,3 +257,14 @@ def test_oring_flange():
         f_soft = soft["results"]["force"]["computed"]
         check("oring flange soft: the housing's deformation lowers the force by more than 10 %", f_soft < 0.9 * f_rigid,
               f"{f_soft / f_rigid:.3f} of the rigid plates' force")
+
+
+def test_contact_candidates_accumulate():
+    """setContactCandidates adds a label's nodes to those of earlier calls (tests/candidates_check.edp:
+    bottom and top of an 8 x 8 square, 9 + 9 nodes), and a label given twice is bad input (exit 2, one
+    line naming it)."""
+    check_script_cases("candidates_check", 1, prefix="candidates_check ")
+    code, output, _ = run_driver("tests/candidates_check.edp", ["-twice", "1"], None)
+    errors = [l for l in output.splitlines() if l.startswith("error:")]
+    check("candidates: a label given twice is bad input (exit 2, one line)", code == 2 and len(errors) == 1
+          and "already a contact candidate label" in errors[0], f"exit {code}; {errors}")

@@ -45,7 +45,7 @@ def test_law_derivatives():
 
 
 def test_new_law_recipe():
-    """The README's recipe for a new law, followed in a copy of include/: one new file (here the
+    """The recipe for a new law (docs/adding_a_law.md), followed in a copy of include/: one new file (here the
     Mooney-Rivlin law renamed plantedLaw, with one planted error in d2W/dJ2) and one registration
     entry. The finite-difference test must pick the new law up with its own parameters and catch
     the planted error in its Hessian only, while the registered laws still pass."""

@@ -4,7 +4,7 @@ from helpers import *  # noqa: F401,F403 (check, out, run_driver, read_summary, 
 
 
 def test_bad_input():
-    """Every case of tests/bad_inputs.py (all drivers; the README's table): one line starting
+    """Every case of tests/bad_inputs.py (all drivers; the table in docs/robustness.md): one line starting
     with `error:` that names the problem, exit code 2, and no summary.json left behind."""
     import bad_inputs
     tmp = out("bad input files")
@@ -118,6 +118,8 @@ def test_folder_lock():
     check("lock: the second run into a busy folder exits 2 with one line saying it is in use",
           held and code == 2 and len(errors) == 1 and "in use" in errors[0], f"held {held}; exit {code}; {errors}")
     logs = [n for n in os.listdir(o) if n.startswith("ipopt_step")]
+    check("lock: the step logs sort in step order (ipopt_step00001.log ...: ipopt_step100.log sorted before "
+          "ipopt_step11.log)", sorted(logs) == sorted(logs, key=lambda n: int(re.sub(r"\D", "", n))), str(sorted(logs)[:3]))
     check("lock: the first run completes undisturbed, one log per step and iterations counted in every step",
           first.returncode == 0 and s is not None and s["complete"] and len(logs) == len(s["steps"])
           and "iterations 0 " not in first_output, f"exit {first.returncode}, {len(logs)} logs")

@@ -214,7 +214,7 @@ def hertz_newton_study(levels, repeat):
     return rows
 
 
-ORING_CONVERGED = 1.3128   # computed / Lindley at c = 0.2, mesh-converged (README, "Rubber")
+ORING_CONVERGED = 1.3128   # computed / Lindley at c = 0.2, mesh-converged (docs/rubber.md)
 
 
 def volumetric_study(oring_levels, hertz_levels, repeat):
