@@ -38,4 +38,11 @@ BENCHMARKS = [
     ("indentation_axi", "benchmarks/indentation.edp", ["-dim", "axi"]),
     ("indentation_3d", "benchmarks/indentation.edp", ["-dim", "3"]),
     ("cube_2d_mooney_platen", "benchmarks/cube.edp", ["-material", "mooney", "-load", "platen", "-compression", "0.35", "-steps", "4"]),
+    ("cattaneo", "benchmarks/cattaneo.edp", []),
+    ("cattaneo_hold", "benchmarks/cattaneo.edp", ["-ratio", "0.99", "-hold", "50", "-h", "0.034"]),
+    ("cattaneo_sliding", "benchmarks/cattaneo.edp", ["-travel", "0.15", "-steps", "3", "-h", "0.034"]),
+    ("sliding_disc_friction", "benchmarks/sliding_disc.edp", ["-mu", "0.3"]),
+    ("oring_plates_friction", "benchmarks/oring.edp", ["-case", "plates", "-mu", "0.3"]),
+    ("hertz_sphere_friction", "benchmarks/hertz_sphere.edp", ["-mu", "0.3"]),
+    ("hertz_sphere_axisymmetric_friction", "benchmarks/hertz_sphere.edp", ["-dim", "axi", "-mu", "0.3"]),
 ]

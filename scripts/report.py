@@ -288,6 +288,39 @@ def fig_sliding_disc(name, filename):
                   filename)
 
 
+def fig_cattaneo(name, filename):
+    """The shear traction of the last tangential step against Cattaneo's, with mu p (the slip bound)."""
+    data = curve_figure(name, "shear.csv")
+    if not data:
+        return None
+    s, rows, fig, ax = data
+    rows = sorted(rows, key=lambda r: float(r["x"]))
+    x, mu = column(rows, "x"), s["parameters"]["mu"]
+    ax.plot(x, mu * column(rows, "pressure"), ":", color="0.5", label="mu p (the slip bound)")
+    ax.plot(x, column(rows, "cattaneo_shear"), "k-", lw=1.2, label="Cattaneo")
+    ax.plot(x, column(rows, "shear"), "o", ms=3.5, label="computed (nodal shear traction)")
+    r = s["results"]
+    c = r.get("stick_half_width", {}).get("computed")
+    if c:
+        ax.axvspan(-c, c, color="tab:green", alpha=0.08, label=f"stick zone |x| < c = {c:.4g}")
+    return finish(fig, ax, "x", "shear traction q",
+                  "Cattaneo's partial slip: two cylinders, Q = " + f"{s['parameters']['ratio']:.3g}" + " mu P\n"
+                  + params_text(s, ["E", "nu", "R", "pressure", "mu", "h"]), filename)
+
+
+def fig_oring_friction(names, filename):
+    """The O-ring plates' force against the squeeze with and without friction."""
+    if not read_csv(os.path.join(RESULTS, names[1], "force_squeeze.csv")):
+        return None   # drawn for the friction run
+    fig, ax = plt.subplots(figsize=(7, 4.2))
+    for name, label, style in zip(names, ("frictionless", "mu = 0.3"), ("o-", "s--")):
+        rows = read_csv(os.path.join(RESULTS, name, "force_squeeze.csv"))
+        if rows:
+            ax.plot(column(rows, "c"), column(rows, "force_per_length"), style, ms=4, label=label)
+    return finish(fig, ax, "squeeze c = delta / (2R)", "force per unit length (N/m)",
+                  "O-ring between plates: force against squeeze, with and without friction", filename)
+
+
 def fig_platen(name, filename):
     data = curve_figure(name, "force_displacement.csv")
     if not data:
@@ -505,6 +538,17 @@ def sections():
          "step. Frictionless, the sideways force stays near zero; the vertical force ripples as the contact nodes "
          "cross the block's facets, 0.5 % at h = R/40, 0.1 % at R/80.", [
             lambda: fig_sliding_disc("sliding_disc", "sliding_disc_forces.png")]),
+        ("Coulomb friction: Cattaneo's partial slip, exact stick, sliding",
+         ["cattaneo", "cattaneo_hold", "cattaneo_sliding", "sliding_disc_friction", "oring_plates_friction",
+          "hertz_sphere_friction", "hertz_sphere_axisymmetric_friction"],
+         "Friction over a load step is a dissipation sum g |slip| with one slack per contact row in the condensed "
+         "reduced problem, no smoothing; Coulomb's bounds g = mu N come from the multipliers by a fixed point. Two "
+         "identical cylinders pressed and then sheared (dolfinx_contact's set-up) meet Cattaneo's stick zone and "
+         "shear traction; held at 0.99 mu P for 50 steps the platen does not move (exact stick); driven past mu P "
+         "every node slides with q = mu p. Coulomb's law is checked at every node of every step of every friction "
+         "run (docs/benchmarks/friction.md).", [
+            lambda: fig_cattaneo("cattaneo", "cattaneo_shear.png"),
+            lambda: fig_oring_friction(["oring_plates", "oring_plates_friction"], "oring_friction_force.png")]),
         ("Clamped square under its own weight (preprint 4.3)", ["clamped_square"],
          "A steel square clamped on one side bends onto a rigid wall under its own weight; the upper part presses, "
          "the lower part lifts off. No analytic answer exists: the references come from our own P2 mesh study "

@@ -135,6 +135,45 @@ _add(["indentation_3d"], ["contact_radius_small_depth"],
 _add(["indentation_axi", "indentation_3d"], ["bottom_pull_rel"],
      Check("exact", 1e-8, "value", note="the bottom pushes on the plane at every node (u_z = 0 models the frictionless plane)"))
 
+_CATTANEO = ["cattaneo", "cattaneo_hold", "cattaneo_sliding"]
+_add(["cattaneo"], ["stick_half_width"],
+     Check("analytic", 2e-2, note="Cattaneo's c = a (1 - Q / mu P)^(1/2), fitted from mu p - q; measured 0.29 % at a/60"))
+_add(["cattaneo"], ["a"], Check("analytic", 1e-2, note="Hertz's line contact of the two cylinders (0.35 % at a/60)"))
+_add(["cattaneo"], ["shear_l2_rel_error"],
+     Check("analytic", 3e-2, "value", note="L2 error of q against Cattaneo's traction: 3.5 % at a/30, 2.4 % at a/60, 0.75 % at a/120"))
+_add(["cattaneo", "cattaneo_hold"], ["tangential_force"], Check("exact", 1e-10, note="the applied Q (load control)"))
+_add(_CATTANEO, ["normal_force"], Check("exact", 1e-10, note="the applied P"))
+_add(["cattaneo_hold", "cattaneo_sliding"], ["a", "stick_half_width", "shear_l2_rel_error"],
+     Check("info", note="the coarse mesh a/20 of the stick and sliding checks"))
+_add(["cattaneo_hold"], ["hold_tangential_drift"],
+     Check("exact", 1e-10, "value", note="exact stick: 50 steps at 0.99 mu P move the platen by nothing (measured 8e-15)"))
+_add(["cattaneo_sliding"], ["tangential_force"],
+     Check("analytic", 1e-6, note="gross sliding: Q = mu P; each node's law holds to 1e-11 in its own row frame, "
+                                  "the pair's deformed normals tilt the global sum by 3e-7"))
+_add(["sliding_disc_friction"], ["friction_ratio_error"],
+     Check("analytic", 1e-2, "value", note="Fx / Fy = mu while sliding; the block's surface tilts under the disc (0.97 %)"))
+_add(["sliding_disc_friction"], ["action_reaction_rel_error"], Check("balance", 1e-12, "value", note="worst over the steps"))
+_add(["sliding_disc_friction"], ["disc_balance_rel_error", "block_balance_rel_error"],
+     Check("balance", 1e-8, "value", note="each body alone, friction forces included, at the last step"))
+_add(["sliding_disc_friction"], ["sideways_force_ratio", "force_ripple"], Check("info", note="with friction Fx is mu Fy"))
+_FRICTION = _CATTANEO + ["sliding_disc_friction", "hertz_sphere_friction", "hertz_sphere_axisymmetric_friction"]
+_add(_FRICTION, ["coulomb_violation"],
+     Check("balance", 1e-8, "value", note="Coulomb's law at every node and step, of the largest bound (2D: exact stick by the polish)"))
+_add(["sliding_disc_friction"], ["coulomb_violation"],
+     Check("balance", 1e-6, "value", note="Coulomb's law at every node and step: 100 x -tol 1e-8; with the updated pairing "
+                                          "the interior point's complementarity residual stays (measured 2.2e-7)"))
+_add(["hertz_sphere_friction"], ["coulomb_violation"],
+     Check("balance", 1e-6, "value", note="Coulomb's law (the 32-facet polygon's) at every node: 100 x -tol 1e-8, "
+                                          "IPOPT's multipliers without the 2D polish (measured 1.7e-8)"))
+_add(["oring_plates_friction"], ["coulomb_violation"],
+     Check("balance", 1e-5, "value", note="Coulomb's law at every node and step: 100 x the O-ring's -tol 1e-7 "
+                                          "(the bounds come from multipliers good to -tol)"))
+_add(_FRICTION + ["oring_plates_friction"], ["dissipated_energy"], Check("exact", None, "positive", note="friction dissipates"))
+_add(["oring_plates_friction"], ["force_c0.1", "force_c0.2", "force_c0.3"],
+     Check("info", note="Lindley's law is frictionless; mu = 0.3 raises the c = 0.2 force by 1.7 % (docs/benchmarks/friction.md)"))
+_add(["hertz_sphere_friction", "hertz_sphere_axisymmetric_friction"], ["a", "p_max", "pressure_l2_rel_error"],
+     Check("info", note="frictionless Hertz does not apply: friction holds the surface back (Spence); 3D against axisymmetric in the docs"))
+
 PLATEN_REFERENCE = 0.6462   # platen force, n = 40, 80, 160 Richardson, observed order 0.92 (docs/benchmarks/platen_block.md)
 _add(["platen_block"], ["platen_force"],
      Check("mesh-converged", 3e-2, note="n = 40, 80, 160, Richardson: 0.6462 (order 0.92 in h)"))

@@ -15,7 +15,7 @@ SPHERE, CLAMPED, ORING = "benchmarks/hertz_sphere.edp", "benchmarks/clamped_squa
 PLATEN, TUBE, TORUS = "benchmarks/platen_block.edp", "benchmarks/rivlin_tube.edp", "benchmarks/oring_torus.edp"
 CYLINDERS, SPHERES = "benchmarks/hertz_two_cylinders.edp", "benchmarks/hertz_two_spheres.edp"
 FLANGE, SLIDING = "benchmarks/oring_flange.edp", "benchmarks/sliding_disc.edp"
-INDENTATION = "benchmarks/indentation.edp"
+INDENTATION, CATTANEO = "benchmarks/indentation.edp", "benchmarks/cattaneo.edp"
 
 # (driver, arguments ({tmp} is a scratch folder holding the files of make_files), the word the
 # error line must contain)
@@ -43,6 +43,16 @@ CASES = [
     (PLANE, ["-zone", "2"], "-zone"),
     (PLANE, ["-gap", "-1e-3"], "penetrates"),
     (PLANE, ["-mesh", "{tmp}/missing.msh"], "-mesh"),
+    (PLANE, ["-mu", "-1"], "-mu"),
+    (PLANE, ["-mu", "abc"], "-mu"),
+    (PLANE, ["-mu", "0.3", "-g", "1"], "-g"),
+    (PLANE, ["-friction", "tresca"], "-g"),
+    (PLANE, ["-friction", "stick"], "-friction"),
+    (PLANE, ["-mu", "0.3", "-facets", "2"], "-facets"),
+    (CATTANEO, ["-mu", "0"], "-mu"),
+    (CATTANEO, ["-ratio", "1.2"], "-ratio"),
+    (CATTANEO, ["-setup", "flat"], "-setup"),
+    (CATTANEO, ["-travel", "0.1", "-hold", "3"], "-travel"),
     (PLANE, ["-mesh", "{tmp}/corrupt.msh"], "-mesh"),
     (CIRCLE, ["-R2", "0"], "-R2"),
     (CIRCLE, ["-R", "-1"], "-R"),

@@ -17,6 +17,9 @@ from helpers import *  # noqa: F401,F403 (check, out, run_driver, read_summary, 
 #     bound 1e-8); in plane strain the plugin's coupled tangent against the varf and FreeFEM's
 #     products to 1e-12
 #   fd_pairs: the contact pairs' rows against finite differences of the gap
+#   fd_friction: the friction tangents orthogonal to the rows' gradients (1e-14), the friction force
+#     against central differences of the dissipation (h = 1e-6: measured 5e-12 in 2D, 2e-11 in 3D;
+#     bound 1e-8), the dissipation positively homogeneous, on a curved obstacle's rows and a pair's
 #   stiffness_check: linear elasticity's Lame-form Hessian against the generic tangent (P1 and P2
 #     in 2D, P1 in 3D and axisymmetric, whole and as the lower triangle, moduli varying per element),
 #     and a hyperelastic tangent and forces from the plugin against their varfs: equal to 1e-12
@@ -25,6 +28,7 @@ SCRIPTS = {
     "fd_obstacles": (lambda: len(registered_obstacles()) + 2, "fd_obstacles obstacle="),
     "fd_volumetric": (lambda: 27, "fd_volumetric case="),
     "fd_pairs": (lambda: 12, None),
+    "fd_friction": (lambda: 6, None),
     "stiffness_check": (lambda: 9, None),
 }
 

@@ -333,6 +333,33 @@ def two_body_study(levels, repeat):
     return rows
 
 
+def friction_study(repeat):
+    """The cost of friction: each friction run against the frictionless run of the same driver and mesh
+    (IPOPT iterations, friction solves: Coulomb's fixed-point passes, wall time)."""
+    rows = []
+    for label, script, args in (("Hertz plane (rigid, 2D)", "benchmarks/hertz_plane.edp", []),
+                                ("two cylinders (pair, 2D)", "benchmarks/hertz_two_cylinders.edp", []),
+                                ("sphere (axisymmetric)", "benchmarks/hertz_sphere.edp", ["-dim", "axi"]),
+                                ("sphere (3D, h = a/8)", "benchmarks/hertz_sphere.edp", []),
+                                ("O-ring plates (Neo-Hookean SQP, 15 steps)", "benchmarks/oring.edp", ["-case", "plates"])):
+        key = re.sub(r"\W+", "_", label).strip("_").lower()
+        plain = measured(f"friction {label}: mu 0", repeat, script, args, f"{OUT}/friction_{key}_plain")
+        rough = measured(f"friction {label}: mu 0.3", repeat, script, args + ["-mu", "0.3"], f"{OUT}/friction_{key}_mu")
+        if plain is None or rough is None:
+            continue
+        p, r = plain[0], rough[0]
+        row = {"case": label, "ndof": p["ndof"], "plain_iterations": p["ipopt_iterations"], "plain_wall_s": plain[1],
+               "iterations": r["ipopt_iterations"], "passes": r["results"]["friction_solves"]["computed"],
+               "steps": len(r["steps"]), "wall_s": rough[1]}
+        row["wall_ratio"] = row["wall_s"] / row["plain_wall_s"]
+        row["iteration_ratio"] = row["iterations"] / max(row["plain_iterations"], 1)
+        rows.append(row)
+        print(f"friction {label}: {row['ndof']} dofs; mu 0: {row['plain_iterations']} it., {row['plain_wall_s']:.1f} s; "
+              f"mu 0.3: {row['iterations']} it., {row['passes']:.0f} friction solves, {row['wall_s']:.1f} s "
+              f"(x{row['wall_ratio']:.1f})", flush=True)
+    return rows
+
+
 ORING_R = 0.52   # oring.edp's default radius
 
 
@@ -402,11 +429,12 @@ def main():
     rubber = study(rubber_3d_study, [3] if args.smoke else [8, 14],
                    [8] if args.smoke else ([16, 32, 48] if args.large else [16, 32])) or ([], [])
     rubber_fill, rubber_indentation = rubber
+    friction = study(friction_study, repeat)
     growth = slope(hertz, "ndof", "solve_step_s")
     data = {"hertz_plane": hertz, "hertz_time_growth_exponent": growth, "cube_ipopt_vs_newton": cube,
             "hertz_neohookean_ipopt_vs_newton": hertz_newton,
             "hertz_sphere": sphere, "volumetric": volumetric, "two_bodies": two_bodies, "felupe_oring": peers_oring,
-            "rubber_3d_fill": rubber_fill, "rubber_3d_indentation": rubber_indentation,
+            "rubber_3d_fill": rubber_fill, "rubber_3d_indentation": rubber_indentation, "friction": friction,
             "smoke": args.smoke, "repeat": repeat, "total_s": time.time() - start}
     out = os.path.join(ROOT, OUT)
     os.makedirs(out, exist_ok=True)
@@ -477,6 +505,11 @@ def main():
                           f"{r['factorization_mean_s']:.2f}", f"{r['wall_s']:.0f}", f"{r['total_over_factorization']:.0f}",
                           f"{r['per_unknown']:.0f}", f"{r['peak_rss_mb']:.0f}", f"{r['force']:.5f}",
                           f"{r['force_small_depth_error']:.1e}") for r in rubber_indentation])
+    t9 = md_tables.table(("case", "DOFs", "mu 0: IPOPT it.", "wall (s)", "mu 0.3: IPOPT it.", "friction solves",
+                         "load steps", "wall (s)", "iterations, mu 0.3 / mu 0", "wall, mu 0.3 / mu 0"),
+                        [(r["case"], r["ndof"], r["plain_iterations"], f"{r['plain_wall_s']:.1f}", r["iterations"],
+                          f"{r['passes']:.0f}", r["steps"], f"{r['wall_s']:.1f}", f"{r['iteration_ratio']:.1f}",
+                          f"{r['wall_ratio']:.1f}") for r in friction])
     text = (f"Hertz plane (P1, linear), solve time growing like DOFs^{growth:.2f}:\n\n{t1}\n\n"
             f"Hertz plane: the condensed solve (default), the full KKT path (-condense no) and "
             f"DOLFINx's SNES-VI on the same mesh (make bench PEERS=1; both with one OpenBLAS thread)\n\n{t1b}\n\n"
@@ -491,10 +524,11 @@ def main():
             f"(scripts/peers/felupe_oring.py); converged F/Lindley at c = 0.3: 1.3260\n\n{t6}\n\n"
             f"3D rubber: factor entries of the nodal form's saddle point matrix against the element penalty form's, "
             f"3D Neo-Hookean block on its foundation, nu = 0.499\n\n{t7}\n\n"
-            f"3D indentation (benchmarks/indentation.edp -dim 3, 10 steps to 0.2 R)\n\n{t8}")
+            f"3D indentation (benchmarks/indentation.edp -dim 3, 10 steps to 0.2 R)\n\n{t8}\n\n"
+            f"Friction (mu = 0.3) against the frictionless run of the same driver and mesh\n\n{t9}")
     print("\n" + text)
     md_tables.write(os.path.join(out, "PERFORMANCE.md"), "Performance: timing studies", text)
-    return 0 if (hertz and cube and hertz_newton and sphere and volumetric and two_bodies and rubber_fill and rubber_indentation
+    return 0 if (hertz and cube and hertz_newton and sphere and volumetric and two_bodies and rubber_fill and rubber_indentation and friction
                  and (peers_oring or not args.peers)) else 1
 
 
