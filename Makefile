@@ -10,9 +10,11 @@ NAMES = $(shell $(PYTHON) scripts/run_benchmarks.py --names)
 run: deps
 	@$(MAKE) --no-print-directory -j$(JOBS) report
 
+# the report first (a failing benchmark shows red in it), then the verdict table, whose exit code
+# fails `make` when a verdict fails
 report: $(addprefix benchmark-,$(NAMES)) convergence-quick
-	@$(PYTHON) scripts/run_benchmarks.py --table
 	@$(PYTHON) scripts/report.py
+	@$(PYTHON) scripts/run_benchmarks.py --table
 
 benchmark-%:
 	@$(PYTHON) scripts/run_benchmarks.py --only $*

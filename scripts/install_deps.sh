@@ -3,7 +3,7 @@
 # FreeFEM with its plugins (ff-Ipopt, iovtk, msh3, gsl) and its plugin compiler ff-c++ (with g++:
 # the suite's own plugins, plugin/*.cpp), gmsh, python3 with matplotlib, pytest and pytest-xdist
 # (the tests), GNU time
-# (the bench's peak-memory measurement), sequential MUMPS's and METIS's headers (the condensed solve's plugin),
+# (the bench's peak-memory measurement), Chromium (the report's test in a real browser), sequential MUMPS's and METIS's headers (the condensed solve's plugin),
 # and OpenBLAS: Debian's
 # MUMPS (IPOPT's linear solver) otherwise runs on the reference BLAS, and the factorisations
 # that dominate every contact solve take 4x longer (3D Hertz, 23.6k dofs: 53 s -> 12 s).
@@ -39,6 +39,8 @@ dpkg -s python3-matplotlib >/dev/null 2>&1 || missing+=(python3-matplotlib)
 # the tests: pytest, and pytest-xdist to run them on every core
 dpkg -s python3-pytest >/dev/null 2>&1 || missing+=(python3-pytest)
 dpkg -s python3-pytest-xdist >/dev/null 2>&1 || missing+=(python3-pytest-xdist)
+# the report as a reader sees it: tests/test_report.py renders report.html in headless Chromium
+need chromium chromium
 
 # --peers (make bench PEERS=1): DOLFINx for scripts/peers/dolfinx_hertz.py, and python3-venv for the venv in
 # which scripts/peers/felupe_oring.py installs FElupe with pip

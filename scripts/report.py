@@ -1,9 +1,12 @@
 #!/usr/bin/env python3
 """The report of `make run`: results/REPORT.md and a self-contained results/report.html.
-It opens with the verdicts: every checked quantity of every benchmark with its reference, the
-reference's kind (exact, analytic, mesh-converged, empirical, balance), the bound the tests hold
-it to (scripts/verdicts.py) and PASS or FAIL; then the informational quantities; then a section
-per benchmark saying what it shows, with its figures (PNG, matplotlib) and its command.
+It opens with an overview on one screen: a row per benchmark family with its verdict count, its
+headline quantities against their references (error and bound), a thumbnail of its main figure
+linking to its section and the command that reproduces it; a failing family's row is red. Then a
+section per family saying what it shows, with its figures (PNG, matplotlib), its commands, its own
+verdict table (every checked quantity with its reference, the reference's kind, the bound the
+tests hold it to, scripts/verdicts.py, and PASS or FAIL; collapsed unless one fails) and its
+informational quantities.
     report.py [--results DIR]   (default: results/ in the repository)
 Works with whatever summaries exist: a benchmark that did not run is listed as missing."""
 
@@ -596,7 +599,7 @@ def sections():
          "misses it by 17 %.", [
             lambda: fig_deformed("rivlin_tube", "rivlin_tube_deformed.png", "Rivlin's tube at nu = 0.5: von Mises stress", [])]),
         ("Hyperelastic cube (Code_Aster SSNV187, preprint 4.1)",
-         [n for n, _, _ in BENCHMARKS if n.startswith("cube")],
+         [n for n, _, _ in BENCHMARKS if n.startswith("cube")] + ["cylinder_axisymmetric"],
          "A block under a dead-load pressure deforms homogeneously, so P1 must reproduce the exact solution, which the "
          "suite computes without finite elements: it does, to 1e-11, in 2D and 3D, supported or resting on a rigid "
          "foundation by contact. The 0.19 % from Code_Aster's incompressible value is the compressibility of "
@@ -645,6 +648,7 @@ def verdict_tables():
 
 CHECK_HEADER = ["benchmark", "quantity", "computed", "reference", "reference kind", "tolerance", "error", "verdict"]
 INFO_HEADER = ["benchmark", "quantity", "computed", "reference", "note"]
+OVERVIEW_HEADER = ["benchmark family", "verdicts", "headline: computed against reference (error, bound)", "figure", "reproduce"]
 KINDS_TEXT = ("Reference kinds: **exact**, an exact solution of the discrete problem or an exact identity (the "
               "applied load); **analytic**, a formula of the continuous problem (Hertz); **mesh-converged**, "
               "extrapolated from a mesh study of our own; **empirical**, an empirical law (Lindley's), held to our "
@@ -652,78 +656,219 @@ KINDS_TEXT = ("Reference kinds: **exact**, an exact solution of the discrete pro
               "The tolerances are those `make test` holds the same runs to (scripts/verdicts.py). The error column "
               "is relative unless marked abs; for `value` checks it is the quantity itself.")
 
+# The overview's row of each section (by the start of its title): a short name and the one or two
+# quantities a reader checks first
+HEADLINES = [
+    ("Hertz contact on a rigid plane", "Hertz, rigid plane", [("hertz_plane", "a"), ("hertz_plane", "p_max")]),
+    ("Hertz contact on a rigid cylinder", "Hertz, rigid cylinder", [("hertz_circle_vertical", "a"), ("hertz_circle_exact", "a")]),
+    ("3D Hertz", "Hertz, 3D and axisymmetric sphere", [("hertz_sphere", "a"), ("hertz_sphere_axisymmetric", "a")]),
+    ("Contact between two elastic bodies", "Two elastic bodies", [("hertz_two_cylinders", "a"), ("hertz_two_spheres", "a")]),
+    ("O-ring between elastic flanges", "O-ring, elastic flanges", [("oring_flange_steel", "action_reaction_rel_error")]),
+    ("Coulomb friction", "Coulomb friction (Cattaneo)", [("cattaneo", "stick_half_width"), ("cattaneo_hold", "hold_tangential_drift")]),
+    ("Large sliding", "Large sliding", [("sliding_disc", "sideways_force_ratio")]),
+    ("Clamped square", "Clamped square", [("clamped_square", "contact_force")]),
+    ("O-ring gasket", "O-ring gasket", [("oring_plates", "force_c0.2"), ("oring_groove", "floor_wall_symmetry_rel_error")]),
+    ("Rubber block pushed", "Block on a wavy floor", [("platen_block", "platen_force")]),
+    ("3D rubber contact", "Indentation, axi and 3D", [("indentation_axi", "force_small_depth"), ("indentation_3d", "force_small_depth")]),
+    ("Rubber at and near incompressibility", "Incompressible rubber", [("rivlin_tube", "outer_radius"), ("hertz_plane_nu0.4999", "a")]),
+    ("Hyperelastic cube", "Hyperelastic cube", [("cube_2d_neohookean", "w"), ("cube_3d_neohookean", "w")]),
+    ("Convergence and solver effort", "Convergence, solver effort", []),
+]
+
+
+def slug(title):
+    """GitHub's anchor of a heading (lowercase, punctuation dropped, spaces to '-'); the HTML uses it too."""
+    text = "".join(ch for ch in title.lower() if ch.isalnum() or ch in " -_")
+    return text.replace(" ", "-")
+
+
+def headline_of(title):
+    return next(((short, quantities) for key, short, quantities in HEADLINES if title.startswith(key)), (title, []))
+
+
+def headline_text(bench, quantity):
+    """'a = 0.05507 against 0.05509 (3.2e-04, bound 3.0e-03)', or None when the run is missing."""
+    s = summary(bench)
+    if not s or quantity not in s["results"]:
+        return None
+    r = s["results"][quantity]
+    reference, error, tolerance, verdict = verdicts.verdict(bench, quantity, r, stored_reference(bench))
+    text = f"{quantity} = {r['computed']:.5g}"
+    if reference is not None and verdicts.check(bench, quantity).measure != "value":
+        text += f" against {reference:.5g}"
+    if error is not None:
+        text += f" ({error:.1e}, {tolerance})"
+    return text + ("" if verdict in ("PASS", "info") else f" {verdict}")
+
+
+def thumbnail(figure):
+    """A small copy of a figure for the overview (figures/thumbs/), or None."""
+    try:
+        from PIL import Image
+        os.makedirs(os.path.join(RESULTS, FIGURES, "thumbs"), exist_ok=True)
+        image = Image.open(os.path.join(RESULTS, FIGURES, figure))
+        image.thumbnail((240, 80))
+        image.save(os.path.join(RESULTS, FIGURES, "thumbs", figure), optimize=True)
+        return f"thumbs/{figure}"
+    except Exception as exc:   # no Pillow, or an unreadable figure: the overview goes without
+        print(f"report: no thumbnail of {figure}: {exc!r}", flush=True)
+        return None
+
+
+def assemble():
+    """The report's parts: the verdict counts, the overview rows and the sections, each section with
+    its figures, commands, its own verdict rows and informational rows (every benchmark lands in one
+    section: those of no section in a last one)."""
+    checked, info, absent, passed, failed = verdict_tables()
+    parts = []
+    placed = set()
+    for title, names, about, builders in sections():
+        parts.append({"title": title, "names": list(names), "about": about, "builders": builders})
+        placed.update(names)
+    others = [n for n, _, _ in BENCHMARKS if n not in placed]
+    if others:
+        parts.append({"title": "Other checks", "names": others, "about": "Benchmarks of no section above.", "builders": []})
+    produced = []
+    for part in parts:
+        part["anchor"] = slug(part["title"])
+        part["commands"] = [command(n) for n in part["names"] if command(n)]
+        part["checked"] = [r for r in checked if r[0] in part["names"]]
+        part["info"] = [r for r in info if r[0] in part["names"]]
+        part["passed"] = sum(r[-1] == "PASS" for r in part["checked"])
+        part["failed"] = sum(r[-1] in ("FAIL", "missing") for r in part["checked"])
+        part["figures"] = []
+        for build in part["builders"]:
+            try:
+                f = build()
+            except Exception as exc:  # a figure that cannot be drawn is reported, not fatal
+                print(f"report: figure failed in '{part['title']}': {exc!r}", flush=True)
+                f = None
+            if f:
+                part["figures"].append(f)
+                produced.append(f)
+        part["thumbnail"] = thumbnail(part["figures"][0]) if part["figures"] else None
+        part["short"], quantities = headline_of(part["title"])
+        part["headlines"] = [t for t in (headline_text(b, q) for b, q in quantities) if t]
+    verdict_line = f"**{passed} PASS, {failed} FAIL** over {len(checked)} checked quantities" + \
+        (f" ({len(absent)} benchmarks not run)" if absent else "")
+    return verdict_line, parts, produced, absent
+
+
+def verdict_summary(part):
+    """'9 PASS', '4 PASS, 6 FAIL', '2 PASS, 1 not run', 'not run' or '-' (no checked quantity)."""
+    missing = sum(r[-1] == "missing" for r in part["checked"])
+    failed = part["failed"] - missing
+    if not part["checked"]:
+        return "-"
+    if missing == len(part["checked"]):
+        return "not run"
+    return ", ".join(t for t in (f"{part['passed']} PASS", f"{failed} FAIL" if failed else "",
+                                 f"{missing} not run" if missing else "") if t)
+
+
+def write_markdown(verdict_line, parts, absent):
+    md = ["# Contact benchmarks: report", "", verdict_line, "", "## Overview", "",
+          "| " + " | ".join(OVERVIEW_HEADER) + " |", "|" + "---|" * len(OVERVIEW_HEADER)]
+    for part in parts:
+        verdict = verdict_summary(part)
+        if part["failed"]:
+            verdict = f"**{verdict}**"
+        thumb = f"<img src=\"{FIGURES}/{part['thumbnail']}\" height=\"40\">" if part["thumbnail"] else ""
+        cmd = f"`{part['commands'][0]}`" if part["commands"] else ""
+        md.append(f"| [{part['short']}](#{part['anchor']}) | {verdict} | {'; '.join(part['headlines'])} | {thumb} | {cmd} |")
+    md += [""] + ([f"Not run: {', '.join(absent)}.", ""] if absent else []) + [KINDS_TEXT]
+    for part in parts:
+        md += ["", f"## {part['title']}", "", part["about"], ""]
+        if part["commands"]:
+            md += ["```sh"] + part["commands"] + ["```", ""]
+        for f in part["figures"]:
+            md += [f"![{f}]({FIGURES}/{f})", ""]
+        if part["checked"]:
+            md += [f"<details{' open' if part['failed'] else ''}><summary>Verdicts: {verdict_summary(part)}</summary>", "",
+                   md_tables.table(CHECK_HEADER, part["checked"]), "", "</details>", ""]
+        if part["info"]:
+            md += [f"<details><summary>Informational quantities ({len(part['info'])})</summary>", "",
+                   md_tables.table(INFO_HEADER, part["info"]), "", "</details>", ""]
+    with open(os.path.join(RESULTS, "REPORT.md"), "w") as fh:
+        fh.write("\n".join(md) + "\n")
+
 
 def main():
     global RESULTS
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--results", default=RESULTS)
     RESULTS = os.path.abspath(parser.parse_args().results)
-    checked, info, absent, passed, failed = verdict_tables()
-    verdict_line = f"**{passed} PASS, {failed} FAIL** over {len(checked)} checked quantities" + \
-        (f"; not run: {', '.join(absent)}" if absent else "")
-    md = ["# Report", "", verdict_line, "", KINDS_TEXT, "", md_tables.table(CHECK_HEADER, checked), "",
-          "## Informational quantities", "", md_tables.table(INFO_HEADER, info)]
-    body = [("verdict", verdict_line, KINDS_TEXT), ("table", CHECK_HEADER, checked),
-            ("heading", "Informational quantities"), ("table", INFO_HEADER, info)]
-    produced, missing = [], []
-    for title, names, about, builders in sections():
-        md += ["", f"## {title}", "", about, ""]
-        cmds = [command(n) for n in names if command(n)]
-        if cmds:
-            md += ["```sh"] + cmds + ["```", ""]
-        figures = []
-        for build in builders:
-            try:
-                f = build()
-            except Exception as exc:  # a figure that cannot be drawn is reported, not fatal
-                print(f"report: figure failed in '{title}': {exc!r}", flush=True)
-                f = None
-            if f:
-                figures.append(f)
-                produced.append(f)
-                md += [f"![{f}]({FIGURES}/{f})", ""]
-            else:
-                missing.append(title)
-        body.append((title, about, cmds, figures))
-    with open(os.path.join(RESULTS, "REPORT.md"), "w") as fh:
-        fh.write("\n".join(md) + "\n")
-    write_html(body)
-    print(f"report: {verdict_line.replace('**', '')}; {len(produced)} figures, results/REPORT.md and results/report.html written",
+    verdict_line, parts, produced, absent = assemble()
+    write_markdown(verdict_line, parts, absent)
+    write_html(verdict_line, parts, absent)
+    where = os.path.relpath(RESULTS, os.getcwd())
+    where = RESULTS if where.startswith("..") else where
+    print(f"report: {where}/report.html (self-contained: open it in a browser) and {where}/REPORT.md, {len(produced)} figures",
           flush=True)
+    print("  " + verdict_line.replace("**", ""))
+    width = max(len(p["short"]) for p in parts)
+    for part in parts:
+        print(f"  {part['short']:<{width}}  {verdict_summary(part):<16}  {'; '.join(part['headlines'])}")
     return 0
 
 
-def write_html(body):
-    parts = ["<!doctype html><html><head><meta charset='utf-8'><title>Contact benchmarks report</title>",
-             "<style>body{font-family:sans-serif;max-width:1200px;margin:auto;padding:1em}"
-             "table{border-collapse:collapse;font-size:12px}td,th{border:1px solid #ccc;padding:2px 6px}"
-             "th{background:#eee}img{max-width:100%;margin:8px 0}pre{background:#f4f4f4;padding:6px}</style>",
-             "</head><body><h1>Frictionless contact benchmarks: report</h1>"]
-    for item in body:
-        if item[0] == "verdict":
-            parts.append(f"<p><b>{html.escape(item[1].replace('**', ''))}</b></p><p>{html.escape(item[2].replace('**', ''))}</p>")
-            continue
-        if item[0] == "heading":
-            parts.append(f"<h2>{html.escape(item[1])}</h2>")
-            continue
-        if item[0] == "table":
-            _, header, rows = item
-            parts.append("<table><tr>" + "".join(f"<th>{html.escape(h)}</th>" for h in header) + "</tr>")
-            for r in rows:
-                style = " style='background:#fdd'" if r[-1] in ("FAIL", "missing") else ""
-                parts.append(f"<tr{style}>" + "".join(f"<td>{html.escape(c)}</td>" for c in r) + "</tr>")
-            parts.append("</table>")
-            continue
-        title, about, cmds, figures = item
-        parts.append(f"<h2>{html.escape(title)}</h2><p>{html.escape(about)}</p>")
-        if cmds:
-            parts.append("<pre>" + html.escape("\n".join(cmds)) + "</pre>")
-        for f in figures:
+STYLE = ("body{font-family:sans-serif;max-width:1300px;margin:auto;padding:0 1em;font-size:14px}"
+         "h1{font-size:20px;margin:8px 0 4px}h2{font-size:17px;margin-top:1.6em;border-top:1px solid #ccc;padding-top:.6em}"
+         "p.counts{margin:2px 0 6px;font-weight:bold}p.counts.fail{color:#b00}"
+         "table{border-collapse:collapse;font-size:12px}td,th{border:1px solid #ccc;padding:2px 6px;vertical-align:middle}"
+         "th{background:#eee}tr.fail{background:#f6c6c6}tr.fail td:first-child a{color:#900;font-weight:bold}"
+         "#overview td{padding:1px 6px}#overview img{height:36px;display:block}"
+         "#overview code{display:inline-block;max-width:330px;overflow:hidden;text-overflow:ellipsis;white-space:nowrap;"
+         "vertical-align:middle;font-size:11px}"
+         "nav{font-size:12px;margin:6px 0}nav a{margin-right:.8em}"
+         "img.figure{max-width:100%;margin:8px 0}pre{background:#f4f4f4;padding:6px;overflow-x:auto}"
+         "details{margin:6px 0}summary{cursor:pointer;font-weight:bold}")
+
+
+def write_html(verdict_line, parts, absent):
+    esc = html.escape
+    counts = verdict_line.replace("**", "")
+    failing = any(part["failed"] for part in parts)
+    out = ["<!doctype html><html lang='en'><head><meta charset='utf-8'><title>Contact benchmarks: report</title>",
+           f"<style>{STYLE}</style></head><body>",
+           "<h1>Contact of hyperelastic bodies: benchmark report</h1>",
+           f"<p class='counts{' fail' if failing else ''}' id='counts'>{esc(counts)}</p>",
+           "<table id='overview'><tr>" + "".join(f"<th>{esc(h)}</th>" for h in OVERVIEW_HEADER) + "</tr>"]
+    for part in parts:
+        thumb = ""
+        if part["thumbnail"]:
+            data = base64.b64encode(open(os.path.join(RESULTS, FIGURES, part["thumbnail"]), "rb").read()).decode()
+            thumb = f"<a href='#{part['anchor']}'><img alt='{esc(part['figures'][0])}' src='data:image/png;base64,{data}'></a>"
+        cmd = part["commands"][0] if part["commands"] else ""
+        out.append(f"<tr class='{'fail' if part['failed'] else 'pass'}' data-section='{part['anchor']}'>"
+                   f"<td><a href='#{part['anchor']}'>{esc(part['short'])}</a></td><td>{esc(verdict_summary(part))}</td>"
+                   f"<td>{'<br>'.join(esc(t) for t in part['headlines'])}</td><td>{thumb}</td>"
+                   f"<td><code title='{esc(cmd)}'>{esc(cmd)}</code></td></tr>")
+    out.append("</table>")
+    if absent:
+        out.append(f"<p>Not run: {esc(', '.join(absent))}.</p>")
+    out.append("<nav id='contents'>Contents: " + "".join(f"<a href='#{p['anchor']}'>{esc(p['short'])}</a>" for p in parts) + "</nav>")
+    out.append(f"<p>{esc(KINDS_TEXT.replace('**', ''))}</p>")
+    for part in parts:
+        out.append(f"<section id='{part['anchor']}'><h2>{esc(part['title'])}</h2><p>{esc(part['about'])}</p>")
+        if part["commands"]:
+            out.append("<pre>" + esc("\n".join(part["commands"])) + "</pre>")
+        for f in part["figures"]:
             data = base64.b64encode(open(os.path.join(RESULTS, FIGURES, f), "rb").read()).decode()
-            parts.append(f"<img alt='{html.escape(f)}' src='data:image/png;base64,{data}'>")
-    parts.append("</body></html>")
+            out.append(f"<img class='figure' alt='{esc(f)}' src='data:image/png;base64,{data}'>")
+        for rows, header, label, opened in ((part["checked"], CHECK_HEADER, f"Verdicts: {verdict_summary(part)}", part["failed"] > 0),
+                                            (part["info"], INFO_HEADER, f"Informational quantities ({len(part['info'])})", False)):
+            if not rows:
+                continue
+            out.append(f"<details{' open' if opened else ''}><summary>{esc(label)}</summary><table><tr>"
+                       + "".join(f"<th>{esc(h)}</th>" for h in header) + "</tr>")
+            for r in rows:
+                out.append(f"<tr class='{'fail' if r[-1] in ('FAIL', 'missing') else ''}'>" + "".join(f"<td>{esc(c)}</td>" for c in r) + "</tr>")
+            out.append("</table></details>")
+        out.append("</section>")
+    out.append("</body></html>")
     with open(os.path.join(RESULTS, "report.html"), "w") as fh:
-        fh.write("\n".join(parts))
+        fh.write("\n".join(out))
 
 
 if __name__ == "__main__":

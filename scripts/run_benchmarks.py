@@ -39,7 +39,8 @@ def run_one(name, script, args):
 
 def table():
     """The verdict table (scripts/verdicts.py): every checked quantity with its reference, kind,
-    tolerance and PASS/FAIL, printed and written to results/RESULTS.md; 1 if any fails or is missing."""
+    tolerance and PASS/FAIL, written to results/RESULTS.md (the failing rows and the count printed); 1 if
+    any fails or is missing."""
     rows, missing, failed = [], [], 0
     for name, _, _ in BENCHMARKS:
         summary = read_summary(os.path.join("results", name))
@@ -60,7 +61,11 @@ def table():
     header = ("benchmark", "quantity", "computed", "reference", "reference kind", "tolerance", "error", "verdict")
     text = md_tables.table(header, rows)
     line = f"{len(rows) - failed} PASS, {failed} FAIL" + (f"; missing or failed runs: {', '.join(missing)}" if missing else "")
-    print("\n" + text + "\n\n" + line)
+    # the terminal gets the failures and the count; the whole table is results/RESULTS.md (and the report)
+    failing = [r for r in rows if r[-1] != "PASS"]
+    if failing:
+        print("\n" + md_tables.table(header, failing))
+    print(f"\n{line}\nthe verdict table: results/RESULTS.md")
     md_tables.write(os.path.join(ROOT, "results", "RESULTS.md"), "Results", text + "\n\n" + line)
     return 1 if missing or failed else 0
 
