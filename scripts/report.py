@@ -748,7 +748,8 @@ def assemble():
                 produced.append(f)
         part["thumbnail"] = thumbnail(part["figures"][0]) if part["figures"] else None
         part["short"], quantities = headline_of(part["title"])
-        part["headlines"] = [t for t in (headline_text(b, q) for b, q in quantities) if t]
+        several = len({b for b, _ in quantities}) > 1   # name the run when the headlines come from two
+        part["headlines"] = [(f"{b}: " if several else "") + t for b, t in ((b, headline_text(b, q)) for b, q in quantities) if t]
     verdict_line = f"**{passed} PASS, {failed} FAIL** over {len(checked)} checked quantities" + \
         (f" ({len(absent)} benchmarks not run)" if absent else "")
     return verdict_line, parts, produced, absent

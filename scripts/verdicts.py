@@ -164,7 +164,10 @@ _add(["sliding_disc_friction"], ["coulomb_violation"],
                                           "the interior point's complementarity residual stays (measured 2.2e-7)"))
 _add(["hertz_sphere_friction"], ["coulomb_violation"],
      Check("balance", 1e-6, "value", note="Coulomb's law (the 32-facet polygon's) at every node: 100 x -tol 1e-8, "
-                                          "IPOPT's multipliers without the 2D polish (measured 1.7e-8)"))
+                                          "IPOPT's multipliers without the 2D polish (measured 2.4e-7)"))
+_add(["hertz_sphere_axisymmetric_friction"], ["coulomb_violation"],
+     Check("balance", 1e-6, "value", note="Coulomb's law at every node: 100 x -tol 1e-8; the polish leaves the interior "
+                                          "point's complementarity residual on a node or two (measured 9.4e-8)"))
 _add(["oring_plates_friction"], ["coulomb_violation"],
      Check("balance", 1e-5, "value", note="Coulomb's law at every node and step: 100 x the O-ring's -tol 1e-7 "
                                           "(the bounds come from multipliers good to -tol)"))
