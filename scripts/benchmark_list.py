@@ -45,4 +45,5 @@ BENCHMARKS = [
     ("oring_plates_friction", "benchmarks/oring.edp", ["-case", "plates", "-mu", "0.3"]),
     ("hertz_sphere_friction", "benchmarks/hertz_sphere.edp", ["-mu", "0.3"]),
     ("hertz_sphere_axisymmetric_friction", "benchmarks/hertz_sphere.edp", ["-dim", "axi", "-mu", "0.3"]),
+    ("bar_impact", "benchmarks/bar_impact.edp", []),
 ]

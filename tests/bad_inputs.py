@@ -15,7 +15,7 @@ SPHERE, CLAMPED, ORING = "benchmarks/hertz_sphere.edp", "benchmarks/clamped_squa
 PLATEN, TUBE, TORUS = "benchmarks/platen_block.edp", "benchmarks/rivlin_tube.edp", "benchmarks/oring_torus.edp"
 CYLINDERS, SPHERES = "benchmarks/hertz_two_cylinders.edp", "benchmarks/hertz_two_spheres.edp"
 FLANGE, SLIDING = "benchmarks/oring_flange.edp", "benchmarks/sliding_disc.edp"
-INDENTATION, CATTANEO = "benchmarks/indentation.edp", "benchmarks/cattaneo.edp"
+INDENTATION, CATTANEO, BAR = "benchmarks/indentation.edp", "benchmarks/cattaneo.edp", "benchmarks/bar_impact.edp"
 
 # (driver, arguments ({tmp} is a scratch folder holding the files of make_files), the word the
 # error line must contain)
@@ -49,6 +49,14 @@ CASES = [
     (PLANE, ["-friction", "tresca"], "-g"),
     (PLANE, ["-friction", "stick"], "-friction"),
     (PLANE, ["-mu", "0.3", "-facets", "2"], "-facets"),
+    (BAR, ["-dt", "0"], "-dt"),
+    (BAR, ["-dt", "-1e-6"], "-dt"),
+    (BAR, ["-tend", "1e-9"], "-tend"),
+    (BAR, ["-tend", "1"], "-tend"),
+    (BAR, ["-rho", "0"], "-rho"),
+    (BAR, ["-scheme", "leapfrog"], "-scheme"),
+    (BAR, ["-mass", "diagonal"], "-mass"),
+    (BAR, ["-v0", "inf"], "-v0"),
     (CATTANEO, ["-mu", "0"], "-mu"),
     (CATTANEO, ["-ratio", "1.2"], "-ratio"),
     (CATTANEO, ["-setup", "flat"], "-setup"),

@@ -20,6 +20,8 @@ from helpers import *  # noqa: F401,F403 (check, out, run_driver, read_summary, 
 #   fd_friction: the friction tangents orthogonal to the rows' gradients (1e-14), the friction force
 #     against central differences of the dissipation (h = 1e-6: measured 5e-12 in 2D, 2e-11 in 3D;
 #     bound 1e-8), the dissipation positively homogeneous, on a curved obstacle's rows and a pair's
+#   fd_inertia: a time step's inertia term (body/inertia.idp) in the energy, gradient, Hessian and its
+#     lower triangle, linear and Neo-Hookean (h = 1e-6: measured 1e-11..3e-11; bound 1e-8)
 #   stiffness_check: linear elasticity's Lame-form Hessian against the generic tangent (P1 and P2
 #     in 2D, P1 in 3D and axisymmetric, whole and as the lower triangle, moduli varying per element),
 #     and a hyperelastic tangent and forces from the plugin against their varfs: equal to 1e-12
@@ -29,6 +31,7 @@ SCRIPTS = {
     "fd_volumetric": (lambda: 27, "fd_volumetric case="),
     "fd_pairs": (lambda: 12, None),
     "fd_friction": (lambda: 6, None),
+    "fd_inertia": (lambda: 6, "fd_inertia law="),
     "stiffness_check": (lambda: 9, None),
 }
 

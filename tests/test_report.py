@@ -190,10 +190,11 @@ def test_bench_smoke():
                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     path = os.path.join(out("bench"), "performance.json")
     data = json.load(open(path)) if os.path.exists(path) else {}
-    check("bench smoke: exits 0 with the seven studies in performance.json", proc.returncode == 0 and data.get("smoke")
+    check("bench smoke: exits 0 with every study in performance.json", proc.returncode == 0 and data.get("smoke")
           and data["hertz_plane"] and data["cube_ipopt_vs_newton"] and data["hertz_neohookean_ipopt_vs_newton"]
           and data["hertz_sphere"] and data.get("volumetric") and data.get("two_bodies")
-          and data.get("rubber_3d_fill") and data.get("rubber_3d_indentation"), proc.stdout.strip().splitlines()[-1:])
+          and data.get("rubber_3d_fill") and data.get("rubber_3d_indentation") and data.get("friction") and data.get("dynamics"),
+          proc.stdout.strip().splitlines()[-1:])
     if data.get("rubber_3d_fill"):
         f = data["rubber_3d_fill"][0]
         check("bench smoke: the 3D block's saddle point factors and the penalty form's both give the exact w (1e-8)",

@@ -333,7 +333,7 @@ def two_body_study(levels, repeat):
     return rows
 
 
-def friction_study(repeat):
+def friction_study(repeat, smoke=False):
     """The cost of friction: each friction run against the frictionless run of the same driver and mesh
     (IPOPT iterations, friction solves: Coulomb's fixed-point passes, wall time)."""
     rows = []
@@ -341,7 +341,7 @@ def friction_study(repeat):
                                 ("two cylinders (pair, 2D)", "benchmarks/hertz_two_cylinders.edp", []),
                                 ("sphere (axisymmetric)", "benchmarks/hertz_sphere.edp", ["-dim", "axi"]),
                                 ("sphere (3D, h = a/8)", "benchmarks/hertz_sphere.edp", []),
-                                ("O-ring plates (Neo-Hookean SQP, 15 steps)", "benchmarks/oring.edp", ["-case", "plates"])):
+                                ("O-ring plates (Neo-Hookean SQP, 15 steps)", "benchmarks/oring.edp", ["-case", "plates"]))[:1 if smoke else 5]:
         key = re.sub(r"\W+", "_", label).strip("_").lower()
         plain = measured(f"friction {label}: mu 0", repeat, script, args, f"{OUT}/friction_{key}_plain")
         rough = measured(f"friction {label}: mu 0.3", repeat, script, args + ["-mu", "0.3"], f"{OUT}/friction_{key}_mu")
@@ -357,6 +357,26 @@ def friction_study(repeat):
         print(f"friction {label}: {row['ndof']} dofs; mu 0: {row['plain_iterations']} it., {row['plain_wall_s']:.1f} s; "
               f"mu 0.3: {row['iterations']} it., {row['passes']:.0f} friction solves, {row['wall_s']:.1f} s "
               f"(x{row['wall_ratio']:.1f})", flush=True)
+    return rows
+
+
+def dynamics_study(levels, repeat):
+    """The bar against the wall (benchmarks/bar_impact.edp, Newmark, redistributed mass): per time step,
+    IPOPT's iterations (mean, max) and the wall time; the time steps' share of the run."""
+    rows = []
+    for n in levels:
+        run = measured(f"bar impact n = {n}", repeat, "benchmarks/bar_impact.edp", ["-n", str(n), "-every", "0"], f"{OUT}/bar_impact_n{n}")
+        if run is None:
+            continue
+        s = run[0]
+        iterations = [st["iterations"] for st in s["steps"]]
+        rows.append({"n": n, "ndof": s["ndof"], "steps": int(s["results"]["time_steps"]["computed"]),
+                     "mean_iterations": sum(iterations) / len(iterations), "max_iterations": max(iterations),
+                     "step_s": solve_seconds(s) / len(s["steps"]), "wall_s": run[1],
+                     "rebound_error": s["results"]["rebound_velocity"]["rel_error"]})
+        r = rows[-1]
+        print(f"bar impact n = {n}: {r['ndof']} dofs, {r['steps']} steps, {r['mean_iterations']:.1f} IPOPT it. per step "
+              f"(max {r['max_iterations']}), {1e3 * r['step_s']:.1f} ms per step, wall {r['wall_s']:.1f} s", flush=True)
     return rows
 
 
@@ -429,12 +449,13 @@ def main():
     rubber = study(rubber_3d_study, [3] if args.smoke else [8, 14],
                    [8] if args.smoke else ([16, 32, 48] if args.large else [16, 32])) or ([], [])
     rubber_fill, rubber_indentation = rubber
-    friction = study(friction_study, repeat)
+    friction = study(friction_study, repeat, args.smoke)
+    dynamics = study(dynamics_study, [50] if args.smoke else [100, 200, 400], repeat)
     growth = slope(hertz, "ndof", "solve_step_s")
     data = {"hertz_plane": hertz, "hertz_time_growth_exponent": growth, "cube_ipopt_vs_newton": cube,
             "hertz_neohookean_ipopt_vs_newton": hertz_newton,
             "hertz_sphere": sphere, "volumetric": volumetric, "two_bodies": two_bodies, "felupe_oring": peers_oring,
-            "rubber_3d_fill": rubber_fill, "rubber_3d_indentation": rubber_indentation, "friction": friction,
+            "rubber_3d_fill": rubber_fill, "rubber_3d_indentation": rubber_indentation, "friction": friction, "dynamics": dynamics,
             "smoke": args.smoke, "repeat": repeat, "total_s": time.time() - start}
     out = os.path.join(ROOT, OUT)
     os.makedirs(out, exist_ok=True)
@@ -510,6 +531,10 @@ def main():
                         [(r["case"], r["ndof"], r["plain_iterations"], f"{r['plain_wall_s']:.1f}", r["iterations"],
                           f"{r['passes']:.0f}", r["steps"], f"{r['wall_s']:.1f}", f"{r['iteration_ratio']:.1f}",
                           f"{r['wall_ratio']:.1f}") for r in friction])
+    t10 = md_tables.table(("n", "DOFs", "time steps", "IPOPT it. per step (mean)", "max", "ms per step", "wall (s)",
+                          "rebound velocity error"),
+                         [(r["n"], r["ndof"], r["steps"], f"{r['mean_iterations']:.1f}", r["max_iterations"],
+                           f"{1e3 * r['step_s']:.1f}", f"{r['wall_s']:.1f}", f"{r['rebound_error']:.1e}") for r in dynamics])
     text = (f"Hertz plane (P1, linear), solve time growing like DOFs^{growth:.2f}:\n\n{t1}\n\n"
             f"Hertz plane: the condensed solve (default), the full KKT path (-condense no) and "
             f"DOLFINx's SNES-VI on the same mesh (make bench PEERS=1; both with one OpenBLAS thread)\n\n{t1b}\n\n"
@@ -525,11 +550,12 @@ def main():
             f"3D rubber: factor entries of the nodal form's saddle point matrix against the element penalty form's, "
             f"3D Neo-Hookean block on its foundation, nu = 0.499\n\n{t7}\n\n"
             f"3D indentation (benchmarks/indentation.edp -dim 3, 10 steps to 0.2 R)\n\n{t8}\n\n"
-            f"Friction (mu = 0.3) against the frictionless run of the same driver and mesh\n\n{t9}")
+            f"Friction (mu = 0.3) against the frictionless run of the same driver and mesh\n\n{t9}\n\n"
+            f"Dynamics: the bar against a wall (Newmark, redistributed mass), per time step\n\n{t10}")
     print("\n" + text)
     md_tables.write(os.path.join(out, "PERFORMANCE.md"), "Performance: timing studies", text)
     return 0 if (hertz and cube and hertz_newton and sphere and volumetric and two_bodies and rubber_fill and rubber_indentation and friction
-                 and (peers_oring or not args.peers)) else 1
+                 and dynamics and (peers_oring or not args.peers)) else 1
 
 
 if __name__ == "__main__":
