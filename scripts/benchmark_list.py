@@ -46,4 +46,6 @@ BENCHMARKS = [
     ("hertz_sphere_friction", "benchmarks/hertz_sphere.edp", ["-mu", "0.3"]),
     ("hertz_sphere_axisymmetric_friction", "benchmarks/hertz_sphere.edp", ["-dim", "axi", "-mu", "0.3"]),
     ("bar_impact", "benchmarks/bar_impact.edp", []),
+    ("patch_test", "benchmarks/patch_test.edp", []),
+    ("sphere_impact", "benchmarks/sphere_impact.edp", []),
 ]

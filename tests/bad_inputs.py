@@ -16,6 +16,7 @@ PLATEN, TUBE, TORUS = "benchmarks/platen_block.edp", "benchmarks/rivlin_tube.edp
 CYLINDERS, SPHERES = "benchmarks/hertz_two_cylinders.edp", "benchmarks/hertz_two_spheres.edp"
 FLANGE, SLIDING = "benchmarks/oring_flange.edp", "benchmarks/sliding_disc.edp"
 INDENTATION, CATTANEO, BAR = "benchmarks/indentation.edp", "benchmarks/cattaneo.edp", "benchmarks/bar_impact.edp"
+PATCH, SPHERE_IMPACT = "benchmarks/patch_test.edp", "benchmarks/sphere_impact.edp"
 
 # (driver, arguments ({tmp} is a scratch folder holding the files of make_files), the word the
 # error line must contain)
@@ -57,6 +58,13 @@ CASES = [
     (BAR, ["-scheme", "leapfrog"], "-scheme"),
     (BAR, ["-mass", "diagonal"], "-mass"),
     (BAR, ["-v0", "inf"], "-v0"),
+    (SPHERE_IMPACT, ["-v0", "0"], "-v0"),
+    (SPHERE_IMPACT, ["-dt", "0"], "-dt"),
+    (SPHERE_IMPACT, ["-zone", "1e-5"], "-zone"),
+    (SPHERE_IMPACT, ["-rho", "-1"], "-rho"),
+    (PATCH, ["-n1", "0"], "-n1"),
+    (PATCH, ["-pass", "three"], "-pass"),
+    (PATCH, ["-pressure", "-1"], "-pressure"),
     (CATTANEO, ["-mu", "0"], "-mu"),
     (CATTANEO, ["-ratio", "1.2"], "-ratio"),
     (CATTANEO, ["-setup", "flat"], "-setup"),
