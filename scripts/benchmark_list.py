@@ -48,4 +48,5 @@ BENCHMARKS = [
     ("bar_impact", "benchmarks/bar_impact.edp", []),
     ("patch_test", "benchmarks/patch_test.edp", []),
     ("sphere_impact", "benchmarks/sphere_impact.edp", []),
+    ("sphere_impact_rubber", "benchmarks/sphere_impact.edp", ["-E", "2.998e6", "-nu", "0.499", "-rho", "1000", "-v0", "0.005"]),
 ]

@@ -191,12 +191,12 @@ _add(["bar_impact"], ["impact_time"], Check("analytic", 2e-2, note="gap / v0, to
 _add(["bar_impact"], ["peak_contact_stress", "momentum_change_rel", "energy_change_rel", "time_steps"],
      Check("info", note="the peak overshoots rho c v0 (Gibbs at the wave front); the changes are the impact's own"))
 
-_add(["sphere_impact"], ["contact_time", "peak_force"],
-     Check("analytic", 3e-2, note="Hertz's impact theory (quasi-static: v0 / c = 1.6e-5); measured 1.5 %, 1.1 % at h = a_max / 15, "
-                                  "dt = t_c / 200"))
-_add(["sphere_impact"], ["rebound_velocity", "energy_ratio"],
-     Check("analytic", 1e-3, note="elastic impact: v0 back, the energy kept (measured 5e-6, 4e-7: Newmark, redistributed mass)"))
-_add(["sphere_impact"], ["time_steps"], INFO)
+_add(["sphere_impact", "sphere_impact_rubber"], ["contact_time", "peak_force"],
+     Check("analytic", 3e-2, note="Hertz's impact theory (quasi-static: v0 / c_s = 3e-5 steel, 1.6e-4 rubber); measured 1.5 % and "
+                                  "1.1 % (steel), 1.5 % and 1.6 % (rubber, nodal form) at h = a_max / 15, dt = t_c / 200"))
+_add(["sphere_impact", "sphere_impact_rubber"], ["rebound_velocity", "energy_ratio"],
+     Check("analytic", 1e-3, note="elastic impact: v0 back, the energy kept (measured 5e-6 to 3e-5: Newmark, redistributed mass)"))
+_add(["sphere_impact", "sphere_impact_rubber"], ["time_steps"], INFO)
 _add(["patch_test"], ["pressure_spread", "stress_error_rel"],
      Check("exact", 1e-6, "value", note="the contact patch test: a uniform pressure transmitted exactly through non-matching "
                                         "meshes by the two-pass pairs (measured 5e-10, 2.4e-10; one pass: 36 %, 16 %)"))
