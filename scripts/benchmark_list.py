@@ -47,6 +47,7 @@ BENCHMARKS = [
     ("hertz_sphere_axisymmetric_friction", "benchmarks/hertz_sphere.edp", ["-dim", "axi", "-mu", "0.3"]),
     ("bar_impact", "benchmarks/bar_impact.edp", []),
     ("patch_test", "benchmarks/patch_test.edp", []),
+    ("bars_head_on", "benchmarks/bars_head_on.edp", []),
     ("sphere_impact", "benchmarks/sphere_impact.edp", []),
     ("sphere_impact_rubber", "benchmarks/sphere_impact.edp", ["-E", "2.998e6", "-nu", "0.499", "-rho", "1000", "-v0", "0.005"]),
 ]

@@ -16,7 +16,7 @@ PLATEN, TUBE, TORUS = "benchmarks/platen_block.edp", "benchmarks/rivlin_tube.edp
 CYLINDERS, SPHERES = "benchmarks/hertz_two_cylinders.edp", "benchmarks/hertz_two_spheres.edp"
 FLANGE, SLIDING = "benchmarks/oring_flange.edp", "benchmarks/sliding_disc.edp"
 INDENTATION, CATTANEO, BAR = "benchmarks/indentation.edp", "benchmarks/cattaneo.edp", "benchmarks/bar_impact.edp"
-PATCH, SPHERE_IMPACT = "benchmarks/patch_test.edp", "benchmarks/sphere_impact.edp"
+PATCH, SPHERE_IMPACT, BARS = "benchmarks/patch_test.edp", "benchmarks/sphere_impact.edp", "benchmarks/bars_head_on.edp"
 
 # (driver, arguments ({tmp} is a scratch folder holding the files of make_files), the word the
 # error line must contain)
@@ -62,6 +62,9 @@ CASES = [
     (SPHERE_IMPACT, ["-dt", "0"], "-dt"),
     (SPHERE_IMPACT, ["-zone", "1e-5"], "-zone"),
     (SPHERE_IMPACT, ["-rho", "-1"], "-rho"),
+    (BARS, ["-gap", "1"], "-gap"),
+    (BARS, ["-nA", "1"], "-nA"),
+    (BARS, ["-tend", "0"], "-tend"),
     (PATCH, ["-n1", "0"], "-n1"),
     (PATCH, ["-pass", "three"], "-pass"),
     (PATCH, ["-pressure", "-1"], "-pressure"),
