@@ -4,6 +4,7 @@ against a wall) and the conservation laws of a free flight."""
 from helpers import *  # noqa: F401,F403 (check, out, run_driver, read_summary, ROOT, TMP and the shared helpers)
 
 import benchmark_list  # noqa: E402
+from freefem import run_ok  # noqa: E402
 
 BAR = "benchmarks/bar_impact.edp"
 
@@ -19,6 +20,7 @@ def test_bar_impact():
     check(f"{label}: exit 0", code == 0 and s is not None, f"exit {code}: {output.strip().splitlines()[-2:]}")
     if s is None:
         return
+    check(f"{label}: summary.json says complete (what make's runner reads)", s["complete"] is True and run_ok(code, s))
     r = s["results"]
     for q in ("contact_duration", "mean_contact_stress", "rebound_velocity", "energy_ratio", "impact_time"):
         bound = verdicts.bound("bar_impact", q)
@@ -50,6 +52,7 @@ def test_sphere_impact():
         if s is None:
             continue
         r = s["results"]
+        check(f"{name}: summary.json says complete", s["complete"] is True)
         for q in ("contact_time", "peak_force", "rebound_velocity", "energy_ratio"):
             bound = verdicts.bound(name, q)
             check(f"{name}: {q} within {bound:.0e} of Hertz's impact", r[q]["rel_error"] <= bound, f"{r[q]['rel_error']:.2e}")
@@ -67,6 +70,7 @@ def test_bars_head_on():
     if s is None:
         return
     r = s["results"]
+    check("bars head on: summary.json says complete", s["complete"] is True)
     for q in ("velocity_A_after", "velocity_B_after", "contact_duration", "energy_ratio"):
         bound = verdicts.bound("bars_head_on", q)
         check(f"bars head on: {q} within {bound:.0e}", r[q]["rel_error"] <= bound, f"{r[q]['rel_error']:.2e}")
