@@ -51,6 +51,7 @@ CASES = [
     (PLANE, ["-friction", "stick"], "-friction"),
     (PLANE, ["-mu", "0.3", "-facets", "2"], "-facets"),
     (BAR, ["-dt", "0"], "-dt"),
+    (BAR, ["-dim", "axi"], "-dim"),
     (BAR, ["-dt", "-1e-6"], "-dt"),
     (BAR, ["-tend", "1e-9"], "-tend"),
     (BAR, ["-tend", "1"], "-tend"),
