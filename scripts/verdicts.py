@@ -191,6 +191,8 @@ _add(["bar_impact"], ["impact_time"], Check("analytic", 2e-2, note="gap / v0, to
 _add(["bar_impact"], ["peak_contact_stress", "momentum_change_rel", "energy_change_rel", "time_steps"],
      Check("info", note="the peak overshoots rho c v0 (Gibbs at the wave front); the changes are the impact's own"))
 
+_add(["sphere_impact_neohookean"], ["contact_time", "peak_force", "rebound_velocity", "energy_ratio", "time_steps"],
+     Check("info", note="the Neo-Hookean sphere (the condensed SQP in every step): t_c 1.0 %, F_max 0.96 %; tested against Hertz"))
 _add(["sphere_impact", "sphere_impact_rubber"], ["contact_time", "peak_force"],
      Check("analytic", 3e-2, note="Hertz's impact theory (quasi-static: v0 / c_s = 3e-5 steel, 1.6e-4 rubber); measured 1.5 % and "
                                   "1.1 % (steel), 1.5 % and 1.6 % (rubber, nodal form) at h = a_max / 15, dt = t_c / 200"))

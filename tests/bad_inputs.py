@@ -60,6 +60,7 @@ CASES = [
     (BAR, ["-mass", "diagonal"], "-mass"),
     (BAR, ["-v0", "inf"], "-v0"),
     (SPHERE_IMPACT, ["-v0", "0"], "-v0"),
+    (SPHERE_IMPACT, ["-material", "mooney"], "-material"),
     (SPHERE_IMPACT, ["-dt", "0"], "-dt"),
     (SPHERE_IMPACT, ["-zone", "1e-5"], "-zone"),
     (SPHERE_IMPACT, ["-rho", "-1"], "-rho"),
