@@ -106,6 +106,11 @@ HOSTILE_PARAMS = {
     "benchmarks/oring_torus.edp": (["meanradius", "C10", "cmax"], ["out"]),
     "benchmarks/sliding_disc.edp": (["E1", "press", "slide", "h"], ["out"]),
     "benchmarks/indentation.edp": (["E", "depth", "block", "h"], ["out"]),
+    "benchmarks/cattaneo.edp": (["mu", "ratio", "pressure", "h", "travel", "hold"], ["out"]),
+    "benchmarks/bar_impact.edp": (["dt", "tend", "v0", "rho", "n", "cfl", "every"], ["out"]),
+    "benchmarks/sphere_impact.edp": (["v0", "R", "dt", "zone", "rho"], ["out"]),
+    "benchmarks/bars_head_on.edp": (["v0", "gap", "nA", "dt"], ["out"]),
+    "benchmarks/patch_test.edp": (["pressure", "n1", "n2", "mu"], ["out"]),
 }
 
 
