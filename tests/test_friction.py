@@ -159,3 +159,20 @@ def test_patch_test():
     if s is not None:
         check("patch test: one pass fails it (spread above 10 %)", s["results"]["pressure_spread"]["computed"] > 0.1,
               f"{s['results']['pressure_spread']['computed']:.3f}")
+
+
+def test_tresca():
+    """Tresca's friction (-friction tresca -g TAU): the bound is given, so one solve per step; where a
+    node slips its shear traction is TAU, nowhere is it above (1e-8 of TAU; measured 2e-16)."""
+    label = "tresca"
+    s = run_summary(label, "benchmarks/hertz_plane.edp", ["-friction", "tresca", "-g", "1e6"])
+    if s is None:
+        return
+    r = s["results"]
+    check(f"{label}: one friction solve (the bounds are known)", r["friction_solves"]["computed"] == 1, str(r["friction_solves"]["computed"]))
+    check(f"{label}: Coulomb's check (1e-8)", r["coulomb_violation"]["computed"] <= 1e-8, f"{r['coulomb_violation']['computed']:.1e}")
+    rows = friction_rows(label)
+    slipping = [abs(float(row["shear"])) for row in rows if row["status"] == "slip"]
+    check(f"{label}: slipping nodes carry |q| = TAU (1e-8)", slipping and max(abs(q - 1e6) for q in slipping) <= 1e-8 * 1e6,
+          f"{len(slipping)} nodes")
+    check(f"{label}: no node above TAU", all(abs(float(row["shear"])) <= 1e6 * (1 + 1e-8) for row in rows))
