@@ -33,12 +33,14 @@ convergence: deps
 	$(PYTHON) scripts/hertz_convergence.py --cases plane,circle_vertical,circle_linearized,circle_exact
 
 # timings: Hertz from 10k to 1M DOFs, the cost of contact, IPOPT against Newton, 3D, the
-# volumetric forms, two bodies: results/performance/PERFORMANCE.md
+# volumetric forms, two bodies: results/performance/PERFORMANCE.md; then the 3D sphere on 1 and
+# 2 processes and 2 threads, and at ~540k DOFs on 2 processes: results/performance/SCALING.md
 # PEERS=1: also DOLFINx's SNES-VI solve of the same Hertz meshes and FElupe on the O-ring
 # (installs python3-dolfinx, and FElupe in a venv; 14 minutes in all on the 2-core machine)
 bench: deps
 	@if [ -n "$(PEERS)" ]; then bash scripts/install_deps.sh --peers; fi
 	$(PYTHON) scripts/performance/studies.py $(if $(PEERS),--peers)
+	$(PYTHON) scripts/performance/scaling.py
 
 # randomized parameter sets, checked for what must always hold (fixed seed; N=200 by default)
 N ?= 200
@@ -56,7 +58,9 @@ workspace: deps
 # energy's matrices and forces), msh_loader (gmsh files) and vtu_writer (the results' .vtu), which
 # include/ loads where they are used
 PLUGIN_NAMES = headless run_control files fold_search schur_condensation fast_assembly msh_loader vtu_writer
-PLUGINS = $(PLUGIN_NAMES:%=plugin/%.so)
+# and mpi_bridge, not a FreeFEM plugin: the MPI MUMPS and MPI calls that run_control and
+# schur_condensation open in their own symbol scope under FreeFem++-mpi (plugin/mpi_bridge.cpp)
+PLUGINS = $(PLUGIN_NAMES:%=plugin/%.so) plugin/mpi_bridge.so
 deps:
 	@bash scripts/install_deps.sh
 	@$(MAKE) -s --no-print-directory $(PLUGINS)
@@ -69,6 +73,9 @@ library_flags = $(foreach d,$(shell sed -n 's|^//ff-c++-LIBRARY-dep:||p' $(1)),$
 plugin/%.so: plugin/%.cpp
 	@cd plugin && ff-c++ $*.cpp $(call library_flags,$<) > build_$*.log 2>&1 || { cat build_$*.log; exit 1; }
 	@rm -f plugin/$*.o
+plugin/run_control.so plugin/schur_condensation.so: plugin/mpi_bridge.hpp
+plugin/mpi_bridge.so: plugin/mpi_bridge.cpp
+	@mpicxx -shared -fPIC -O2 -o $@ $< -ldmumps -lmumps_common > plugin/build_mpi_bridge.log 2>&1 || { cat plugin/build_mpi_bridge.log; exit 1; }
 
 clean:
 	rm -rf results plugin/*.so plugin/build_*.log

@@ -36,6 +36,12 @@
 //   jsonText(text): text as a JSON string, quotes, backslashes and control characters escaped.
 //   realText(x): x with the fewest significant digits (15 to 17) that read back as x (FreeFEM's
 //     "" + x keeps 6).
+//   privateTextFile(text): a path at which the process, and only it, reads text: an anonymous
+//     file in memory (memfd_create), nothing on any disk; the one file is rewritten at each call.
+//     IPOPT's options for the processes of an MPI run other than 0, which write nothing.
+// Under MPI (FreeFem++-mpi) only process 0 writes: on the others, every call above that would
+// change the file system (makeFolder, writeProbe, lockFolder, removeOutput, removeListedOutputs,
+// renameFile, runProgram, writeTextFile, appendTextFile) does nothing and returns success.
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
 #include <algorithm>
@@ -46,13 +52,18 @@
 #include <fcntl.h>
 #include <string>
 #include <sys/file.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <vector>
 
+extern long mpirank;   // FreeFEM's: 0 under FreeFem++
+
 namespace {
+
+bool writesHere() { return mpirank == 0; }
 
 long pathKind(string *const &path) {
   struct stat info;
@@ -84,6 +95,7 @@ long fileEndsWith(string *const &path, string *const &text) {
 }
 
 long makeFolder(string *const &path) {
+  if (!writesHere()) return 0;
   const std::string &p = *path;
   if (p.empty()) return ENOENT;
   for (size_t i = 1; i <= p.size(); i++) {
@@ -97,6 +109,7 @@ long makeFolder(string *const &path) {
 }
 
 long writeProbe(string *const &folder) {
+  if (!writesHere()) return 0;
   std::string probe = *folder + "/.write_probe";
   int fd = open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0644);
   if (fd < 0) return errno;
@@ -107,6 +120,7 @@ long writeProbe(string *const &folder) {
 
 int heldLock = -1;   // kept open for the process's life: the lock goes with it
 long lockFolder(string *const &folder) {
+  if (!writesHere()) return 0;
   std::string file = *folder + "/.lock";
   int fd = open(file.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW, 0644);
   if (fd < 0) return errno;
@@ -121,6 +135,7 @@ long lockFolder(string *const &folder) {
 }
 
 long removeAt(const std::string &path) {
+  if (!writesHere()) return 0;
   struct stat info;
   if (lstat(path.c_str(), &info) != 0) return errno == ENOENT ? 0 : errno;
   if (S_ISDIR(info.st_mode)) return EISDIR;
@@ -131,6 +146,7 @@ long removeAt(const std::string &path) {
 long removeOutput(string *const &path) { return removeAt(*path); }
 
 long removeListedOutputs(string *const &folder) {
+  if (!writesHere()) return 0;
   std::string list = *folder + "/.outputs";
   FILE *f = fopen(list.c_str(), "r");
   if (!f) return errno == ENOENT ? 0 : -1;
@@ -150,7 +166,10 @@ long removeListedOutputs(string *const &folder) {
   return removed;
 }
 
-long renameFile(string *const &from, string *const &to) { return rename(from->c_str(), to->c_str()) == 0 ? 0 : errno; }
+long renameFile(string *const &from, string *const &to) {
+  if (!writesHere()) return 0;
+  return rename(from->c_str(), to->c_str()) == 0 ? 0 : errno;
+}
 
 long completeLines(string *const &path) {
   FILE *f = fopen(path->c_str(), "rb");
@@ -168,6 +187,7 @@ long completeLines(string *const &path) {
 }
 
 long runProgram(string *const &program, string *const &arguments, string *const &log) {
+  if (!writesHere()) return 0;
   std::vector<std::string> words;
   words.push_back(*program);
   size_t start = 0;
@@ -205,6 +225,7 @@ long runProgram(string *const &program, string *const &arguments, string *const 
 }
 
 long writeText(const std::string &path, const std::string &text, bool append) {
+  if (!writesHere()) return 0;
   int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_NOFOLLOW | (append ? O_APPEND : O_TRUNC), 0644);
   if (fd < 0) return errno;
   size_t done = 0;
@@ -230,6 +251,18 @@ long writeText(const std::string &path, const std::string &text, bool append) {
 }
 long writeTextFile(string *const &path, string *const &text) { return writeText(*path, *text, false); }
 long appendTextFile(string *const &path, string *const &text) { return writeText(*path, *text, true); }
+
+string *privateTextFile(Stack s, string *const &text) {
+  static int descriptor = -1;
+  if (descriptor < 0) descriptor = memfd_create("private_text", MFD_CLOEXEC);
+  bool written = descriptor >= 0 && ftruncate(descriptor, 0) == 0 && lseek(descriptor, 0, SEEK_SET) == 0;
+  for (size_t done = 0; written && done < text->size();) {
+    ssize_t n = write(descriptor, text->data() + done, text->size() - done);
+    if (n <= 0) written = false; else done += size_t(n);
+  }
+  ffassert(written);   // memory, not a disk: only an exhausted process fails here
+  return Add2StackOfPtr2Free(s, new string("/proc/self/fd/" + std::to_string(descriptor)));
+}
 
 string *errorText(Stack s, const long &code) { return Add2StackOfPtr2Free(s, new string(strerror(int(code)))); }
 
@@ -282,6 +315,7 @@ void init() {
   Global.Add("runProgram", "(", new OneOperator3_<long, string *, string *, string *>(runProgram));
   Global.Add("writeTextFile", "(", new OneOperator2_<long, string *, string *>(writeTextFile));
   Global.Add("appendTextFile", "(", new OneOperator2_<long, string *, string *>(appendTextFile));
+  Global.Add("privateTextFile", "(", new OneOperator1s_<string *, string *>(privateTextFile));
   Global.Add("errorText", "(", new OneOperator1s_<string *, long>(errorText));
   Global.Add("realText", "(", new OneOperator1s_<string *, double>(realText));
   Global.Add("pathProblem", "(", new OneOperator1s_<string *, string *>(pathProblem));

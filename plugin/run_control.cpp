@@ -4,14 +4,30 @@
 //     goes on) and that prints FreeFEM's call stack; the suite's error rule is one line and a
 //     documented exit code.
 //   clockSeconds(): wall-clock seconds with microseconds (FreeFEM's time() counts whole seconds).
+//   processCount(), processRank(): the run's MPI processes and this one's rank (1 and 0 under
+//     FreeFem++; FreeFEM's own mpirank and mpisize are names only FreeFem++-mpi's scripts know).
+//   processBarrier(): every process waits for the others (nothing under FreeFem++).
+//   Under FreeFem++-mpi every process runs the whole script (include/core/output.idp): the standard
+//   output of all but process 0 goes to /dev/null from the moment this plugin loads, so that each
+//   progress and error line is printed once (their standard error stays: a crash still shows).
+//   launchedProcesses(): the processes mpirun (OpenMPI's OMPI_COMM_WORLD_SIZE) or a PMI launcher
+//     (PMI_SIZE) started, 1 without one: FreeFem++ started N times by mpirun sees N here and 1 in
+//     processCount() (include/core/run.idp refuses it).
 #include "ff++.hpp"
+#include "mpi_bridge.hpp"
 #include <cstdio>
+#include <cstdlib>
+#include <fcntl.h>
 #include <sys/time.h>
 #include <unistd.h>
 
 namespace {
 
 long exitRun(long code) {
+  // under MPI every process fails at the same point: the others give process 0 two seconds to
+  // print its error line and end the job (mpirun stops all at the first failed exit, and stopped
+  // process 0's last lines unprinted when another process was first)
+  if (code != 0 && mpisize > 1 && mpirank > 0) sleep(2);
   cout.flush();
   cerr.flush();
   fflush(stdout);
@@ -26,9 +42,33 @@ double clockSeconds() {
   return now.tv_sec + 1e-6*now.tv_usec;
 }
 
+long processCount() { return mpisize > 1 ? mpisize : 1; }   // (0 under FreeFem++)
+long processRank() { return mpirank; }
+long processBarrier() {
+  if (const MpiBridge *bridge = mpiBridge()) bridge->barrier();
+  return 0;
+}
+
+long launchedProcesses() {
+  for (const char *name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}) {
+    const char *value = getenv(name);
+    if (value && atol(value) > 0) return atol(value);
+  }
+  return 1;
+}
+
 void init() {
+  if (mpisize > 1 && mpirank > 0) {
+    int null = open("/dev/null", O_WRONLY);
+    fflush(stdout);
+    if (null >= 0) { dup2(null, 1); close(null); }
+  }
   Global.Add("exitRun", "(", new OneOperator1<long, long>(exitRun));
   Global.Add("clockSeconds", "(", new OneOperator0<double>(clockSeconds));
+  Global.Add("processCount", "(", new OneOperator0<long>(processCount));
+  Global.Add("processRank", "(", new OneOperator0<long>(processRank));
+  Global.Add("processBarrier", "(", new OneOperator0<long>(processBarrier));
+  Global.Add("launchedProcesses", "(", new OneOperator0<long>(launchedProcesses));
 }
 
 }  // namespace

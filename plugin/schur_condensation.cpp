@@ -31,9 +31,20 @@
 //     entries in the factors, flops, and its negative pivots (MUMPS INFOG(12): the negative
 //     eigenvalues of the factorized matrix without its Schur block, by Sylvester's law of inertia).
 //   schurRelease(): frees MUMPS's factors.
+//   schurProcessShares(entries, flops): the last factorization's entries in the factors held by each
+//     process and the flops of its elimination there (MUMPS's INFO(27) and RINFO(3), one per process
+//     in rank order; under FreeFem++ one of each, INFOG(29) and RINFOG(3)).
+//
+// Under FreeFem++-mpi with more than one process every process makes the same calls with the same
+// (replicated) matrix: the MPI MUMPS of plugin/mpi_bridge.so (opened in its own symbol scope, away
+// from IPOPT's sequential MUMPS) factorizes it across the processes, each handing it only its share
+// of the entries (ICNTL(18) = 3, a contiguous slice of the lower triangle); process 0 computes the
+// pivot order and receives the Schur block and the solutions (centralized), which it broadcasts, so
+// that every process holds the same S, g and U and goes on identically.
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
 #include <dmumps_c.h>
+#include "mpi_bridge.hpp"
 #include <metis.h>
 #include <sys/time.h>
 #include <algorithm>
@@ -52,11 +63,21 @@ struct Condensation {
   double statistics[6] = {0, 0, 0, 0, 0, 0};   // ordering s, analysis s, factorization s, factor entries, flops, negative pivots
   bool indefinite = false;   // LDL^T with pivoting from the start
   std::vector<int> variableNodes;   // the caller's grouping of the variables into graph nodes
+  const MpiBridge *bridge = nullptr;   // the MPI MUMPS when the run has several processes
+  std::vector<double> processEntries, processFlops;  // INFO(27), RINFO(3) of every process after the last factorization
 
+  bool host() const { return mpirank == 0; }
+  void call() {
+    if (bridge) bridge->mumps(&id); else dmumps_c(&id);
+  }
+  // process 0's values of v to every process
+  void share(std::vector<double> &v) {
+    if (bridge) bridge->broadcast(v.data(), long(v.size()));
+  }
   void release() {
     if (!alive) return;
     id.job = -2;
-    dmumps_c(&id);
+    call();
     alive = false;
   }
   void quiet() {
@@ -72,8 +93,9 @@ struct Condensation {
     id.lredrhs = int(nSchur);
     id.icntl[25] = phase;
     id.job = 3;
-    dmumps_c(&id);
+    call();
     id.icntl[25] = 0;
+    if (phase == 1) share(reduced); else share(rhs);   // centralized on process 0
     return id.infog[0];
   }
 };
@@ -90,21 +112,21 @@ double clockNow() {
 // (ICNTL(7) = 7) fell back to AMD: 26.1M entries in the factors at 242k dofs, 19.8M with METIS.
 // METIS orders the nodes: consecutive variables with the same neighbours (a vector field's
 // components at one node) are one vertex of its graph.
-void nestedDissectionOrder(Condensation &c) {
+void nestedDissectionOrder(Condensation &c, const std::vector<int> &rows, const std::vector<int> &columns) {
   long n = c.n;
   // the symmetric pattern with its diagonal (closed neighbourhoods) in compressed rows, each row
   // sorted and without repeats (built by counting: a vector per row took ~2 s at 949k dofs)
   std::vector<long> start(n + 1, 0);
-  for (size_t k = 0; k < c.rows.size(); k++) {
-    int i = c.rows[k] - 1, j = c.columns[k] - 1;
+  for (size_t k = 0; k < rows.size(); k++) {
+    int i = rows[k] - 1, j = columns[k] - 1;
     if (i != j) { start[i + 1]++; start[j + 1]++; }
   }
   for (long i = 0; i < n; i++) start[i + 1] += start[i] + 1;   // + the diagonal
   std::vector<int> column(start[n]);
   std::vector<long> fill(start.begin(), start.end() - 1);
   for (long i = 0; i < n; i++) column[fill[i]++] = int(i);
-  for (size_t k = 0; k < c.rows.size(); k++) {
-    int i = c.rows[k] - 1, j = c.columns[k] - 1;
+  for (size_t k = 0; k < rows.size(); k++) {
+    int i = rows[k] - 1, j = columns[k] - 1;
     if (i != j) { column[fill[i]++] = j; column[fill[j]++] = i; }
   }
   std::vector<long> rowFirst(n + 1, 0);   // after sorting and removing repeats, in place
@@ -172,16 +194,22 @@ void nestedDissectionOrder(Condensation &c) {
 static int factorWith(Condensation &c, int sym) {
   c.release();
   DMUMPS_STRUC_C &id = c.id;
-  id.comm_fortran = useCommWorld;
-  id.par = 1;
+  id.comm_fortran = useCommWorld;   // MPI_COMM_WORLD for the MPI MUMPS
+  id.par = 1;                       // process 0 works too
   id.sym = sym;
   id.job = -1;
-  dmumps_c(&id);
+  c.call();
   c.alive = true;
   c.quiet();
   id.n = int(c.n);
-  id.nnz = (MUMPS_INT8)c.values.size();
-  id.irn = c.rows.data(); id.jcn = c.columns.data(); id.a = c.values.data();
+  if (c.bridge) {              // ICNTL(18) = 3: each process its own slice of the entries
+    id.icntl[17] = 3;
+    id.nnz_loc = (MUMPS_INT8)c.values.size();
+    id.irn_loc = c.rows.data(); id.jcn_loc = c.columns.data(); id.a_loc = c.values.data();
+  } else {
+    id.nnz = (MUMPS_INT8)c.values.size();
+    id.irn = c.rows.data(); id.jcn = c.columns.data(); id.a = c.values.data();
+  }
   if (c.nSchur > 0) {
     id.icntl[18] = 1;          // ICNTL(19): the Schur complement, centralized
     id.size_schur = int(c.nSchur);
@@ -192,15 +220,33 @@ static int factorWith(Condensation &c, int sym) {
   id.icntl[6] = 1;             // ICNTL(7): the pivot order given in PERM_IN
   double t0 = clockNow();
   id.job = 1;                  // analysis
-  dmumps_c(&id);
+  c.call();
   c.analysisTime = clockNow() - t0;
   if (id.infog[0] >= 0) {
     id.job = 2;                // factorization
-    dmumps_c(&id);
+    c.call();
   }
   int info = id.infog[0];
   if (info < 0) c.release();
   return info;
+}
+
+// The lower triangle of K's entries first..last-1 on the free dofs (1-based), and with
+// withFixed 1 on each fixed dof's diagonal.
+static void lowerTriangle(const MatriceMorse<double> &K, const KN<double> &fixed, size_t first, size_t last, bool withFixed,
+                          std::vector<int> &rows, std::vector<int> &columns, std::vector<double> &values) {
+  size_t room = (last - first)/2 + (withFixed ? K.n : 0);
+  rows.reserve(room); columns.reserve(room); values.reserve(room);
+  for (size_t k = first; k < last; k++) {
+    long i = K.i[k], j = K.j[k];
+    if (fixed[i] != 0 || fixed[j] != 0) continue;
+    if (!K.half && j > i) continue;
+    if (K.half && j > i) std::swap(i, j);
+    rows.push_back(int(i + 1)); columns.push_back(int(j + 1)); values.push_back(K.aij[k]);
+  }
+  if (withFixed)
+    for (long i = 0; i < K.n; i++)
+      if (fixed[i] != 0) { rows.push_back(int(i + 1)); columns.push_back(int(i + 1)); values.push_back(1.); }
 }
 
 static long schurFactor(Matrice_Creuse<double> *const &pK, KN<double> *const &pFixed, KN<long> *const &pSchur,
@@ -213,19 +259,14 @@ static long schurFactor(Matrice_Creuse<double> *const &pK, KN<double> *const &pF
   long n = K->n, nSchur = schurDofs.N();
   ffassert(fixed.N() == n && nSchur >= 0 && nSchur < n);
   Condensation &c = condensation;
-  // the lower triangle of K on the free dofs (1-based), then 1 on each fixed dof's diagonal
+  c.bridge = mpiBridge();
+  // this process's entries: all of them, or under MPI its slice of K's entries (process 0's with
+  // the fixed dofs' diagonal)
+  long processes = c.bridge ? mpisize : 1;
+  size_t first = size_t(double(K->nnz)*mpirank/processes), last = size_t(double(K->nnz)*(mpirank + 1)/processes);
   std::vector<int> rows, columns, schurList(nSchur);
   std::vector<double> values;
-  rows.reserve(K->nnz/2 + n); columns.reserve(K->nnz/2 + n); values.reserve(K->nnz/2 + n);
-  for (size_t k = 0; k < K->nnz; k++) {
-    long i = K->i[k], j = K->j[k];
-    if (fixed[i] != 0 || fixed[j] != 0) continue;
-    if (!K->half && j > i) continue;
-    if (K->half && j > i) std::swap(i, j);
-    rows.push_back(int(i + 1)); columns.push_back(int(j + 1)); values.push_back(K->aij[k]);
-  }
-  for (long i = 0; i < n; i++)
-    if (fixed[i] != 0) { rows.push_back(int(i + 1)); columns.push_back(int(i + 1)); values.push_back(1.); }
+  lowerTriangle(*K, fixed, first, last, c.host(), rows, columns, values);
   for (long s = 0; s < nSchur; s++) {
     ffassert(schurDofs[s] >= 0 && schurDofs[s] < n && fixed[schurDofs[s]] == 0);
     schurList[s] = int(schurDofs[s] + 1);
@@ -239,9 +280,9 @@ static long schurFactor(Matrice_Creuse<double> *const &pK, KN<double> *const &pF
   c.values.swap(values);
   if (samePattern) {
     c.analysisTime = 0;
-    c.id.a = c.values.data();
+    if (c.bridge) c.id.a_loc = c.values.data(); else c.id.a = c.values.data();
     c.id.job = 2;
-    dmumps_c(&c.id);
+    c.call();
     info = c.id.infog[0];
   }
   if (info < 0) {
@@ -251,7 +292,16 @@ static long schurFactor(Matrice_Creuse<double> *const &pK, KN<double> *const &pF
     c.schur.assign(nSchur*nSchur, 0.);
     c.rhs.assign(n, 0.);
     c.reduced.assign(nSchur, 0.);
-    if (!samePattern) nestedDissectionOrder(c);   // (same pattern, new values that need LDL^T: same order)
+    // (same pattern, new values that need LDL^T: same order); under MPI process 0 orders the whole
+    // pattern, the others pass no order (MUMPS reads PERM_IN on process 0 only)
+    if (!samePattern && !c.bridge) nestedDissectionOrder(c, c.rows, c.columns);
+    if (!samePattern && c.bridge && c.host()) {
+      std::vector<int> allRows, allColumns;
+      std::vector<double> allValues;
+      lowerTriangle(*K, fixed, 0, K->nnz, true, allRows, allColumns, allValues);
+      std::vector<double>().swap(allValues);
+      nestedDissectionOrder(c, allRows, allColumns);
+    }
     t1 = clockNow();
     // Cholesky (sym = 1) when K_ii is positive definite: 5.5 s against 8.7 s for LDL^T with pivoting
     // (sym = 2) on the 67k-dof 3D sphere; LDL^T when it is not (a body left free by its rows)
@@ -264,7 +314,14 @@ static long schurFactor(Matrice_Creuse<double> *const &pK, KN<double> *const &pF
   c.statistics[3] = double(id.infog[28]);   // INFOG(29): entries in the factors
   c.statistics[4] = id.rinfog[2];          // RINFOG(3): flops of the elimination
   c.statistics[5] = double(id.infog[11]);  // INFOG(12): negative pivots
+  c.processEntries.assign(processes, double(id.infog[28]));
+  c.processFlops.assign(processes, id.rinfog[2]);
+  if (c.bridge) {   // INFO(27), RINFO(3): this process's
+    c.bridge->gather(double(id.info[26]), c.processEntries.data());
+    c.bridge->gather(id.rinfo[2], c.processFlops.data());
+  }
   if (info < 0) return info;
+  c.share(c.schur);   // centralized on process 0
   // a symmetric matrix's Schur block comes back as its lower triangle by rows (ICNTL(19) = 1);
   // the other holds MUMPS's workspace, not zeros
   KNM<double> &S = *pS;
@@ -305,6 +362,15 @@ static long schurStatistics(KN<double> *const &pStatistics) {
   return 0;
 }
 
+static long schurProcessShares(KN<double> *const &pEntries, KN<double> *const &pFlops) {
+  const Condensation &c = condensation;
+  long n = long(c.processEntries.size());
+  pEntries->resize(n);
+  pFlops->resize(n);
+  for (long k = 0; k < n; k++) { (*pEntries)[k] = c.processEntries[k]; (*pFlops)[k] = c.processFlops[k]; }
+  return 0;
+}
+
 static long schurIndefinite(const bool &yes) {
   condensation.indefinite = yes;
   return 0;
@@ -331,6 +397,7 @@ static void init() {
   Global.Add("schurReduce", "(", new OneOperator2_<long, KN<double> *, KN<double> *>(schurReduce));
   Global.Add("schurExpand", "(", new OneOperator3_<long, KN<double> *, KN<double> *, KN<double> *>(schurExpand));
   Global.Add("schurStatistics", "(", new OneOperator1_<long, KN<double> *>(schurStatistics));
+  Global.Add("schurProcessShares", "(", new OneOperator2_<long, KN<double> *, KN<double> *>(schurProcessShares));
   Global.Add("schurIndefinite", "(", new OneOperator1_<long, bool>(schurIndefinite));
   Global.Add("schurVariableNodes", "(", new OneOperator1_<long, KN<long> *>(schurVariableNodes));
   Global.Add("schurRelease", "(", new OneOperator0<long>(schurRelease));

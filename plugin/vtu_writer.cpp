@@ -12,7 +12,8 @@
 // savevtk's: XML UnstructuredGrid, inline base64 "binary" arrays each led by its 4-byte length,
 // Float32 values, the element cells only (triangles, VTK type 5, or tetrahedra, type 10).
 // scripts/vtu.py reads it for the report's figures. Returns the number of cells, or minus the errno
-// of a write that failed (a full disk): the script says so (include/model.idp).
+// of a write that failed (a full disk): the script says so (include/model.idp). Under MPI only
+// process 0 writes: the others return the number of cells and write nothing.
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
 #include <cerrno>
@@ -22,6 +23,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+extern long mpirank;   // FreeFEM's: 0 under FreeFem++
 
 namespace {
 
@@ -110,6 +113,7 @@ long writeVtuOf(string *const &file, const MeshType *pTh, KN<double> *const &pU,
                 string *const &names) {
   ffassert(pTh);
   const MeshType &Th = *pTh;
+  if (mpirank != 0) return Th.nt;
   std::vector<float> points(3 * Th.nv);
   for (long v = 0; v < Th.nv; v++) {
     points[3 * v] = float(Th(v).x); points[3 * v + 1] = float(Th(v).y); points[3 * v + 2] = float(zOf(Th(v)));

@@ -8,9 +8,17 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
-def run_driver(script, args, out_dir, timeout=1800, cwd=ROOT):
-    """Run `FreeFem++ script args [-out out_dir]`; return (exit code, output, seconds)."""
-    command = ["FreeFem++", "-nw", script] + list(args) + (["-out", out_dir] if out_dir else [])
+# an MPI run, as docs/scaling.md shows it: mpirun with FreeFem++-mpi (FreeFEM's ff-mpirun splices its
+# arguments into a shell command with eval); --allow-run-as-root for the root of a fresh machine,
+# --oversubscribe for more processes than cores
+MPIRUN = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np"]
+
+
+def run_driver(script, args, out_dir, timeout=1800, cwd=ROOT, processes=1):
+    """Run `FreeFem++ script args [-out out_dir]` (with processes > 1: `mpirun -np processes
+    FreeFem++-mpi ...`); return (exit code, output, seconds)."""
+    program = ["FreeFem++"] if processes == 1 else MPIRUN + [str(processes), "FreeFem++-mpi"]
+    command = program + ["-nw", script] + list(args) + (["-out", out_dir] if out_dir else [])
     start = time.time()
     proc = subprocess.run(command, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                           text=True, timeout=timeout)

@@ -4,6 +4,7 @@
 # the suite's own plugins, plugin/*.cpp), gmsh, python3 with matplotlib, pytest and pytest-xdist
 # (the tests), GNU time
 # (the bench's peak-memory measurement), Chromium (the report's test in a real browser), sequential MUMPS's and METIS's headers (the condensed solve's plugin),
+# OpenMPI and the MPI MUMPS (runs on several processes),
 # and OpenBLAS: Debian's
 # MUMPS (IPOPT's linear solver) otherwise runs on the reference BLAS, and the factorisations
 # that dominate every contact solve take 4x longer (3D Hertz, 23.6k dofs: 53 s -> 12 s).
@@ -34,6 +35,10 @@ dpkg -s libopenblas0-pthread >/dev/null 2>&1 || missing+=(libopenblas0-pthread)
 # sequential MUMPS's headers and library, for the condensed solve's plugin (plugin/schur_condensation.cpp)
 dpkg -s libmumps-seq-dev >/dev/null 2>&1 || missing+=(libmumps-seq-dev)
 dpkg -s libmetis-dev >/dev/null 2>&1 || missing+=(libmetis-dev)
+# runs on several processes (docs/scaling.md): mpirun, mpicxx and the MPI MUMPS for plugin/mpi_bridge.cpp
+need mpirun openmpi-bin
+need mpicxx libopenmpi-dev
+dpkg -s libmumps-dev >/dev/null 2>&1 || missing+=(libmumps-dev)
 # the report's figures: matplotlib for Debian's python3 (the Makefile runs /usr/bin/python3)
 dpkg -s python3-matplotlib >/dev/null 2>&1 || missing+=(python3-matplotlib)
 # the tests: pytest, and pytest-xdist to run them on every core

@@ -11,7 +11,12 @@ hostile input (a non-finite, overflowing or malformed number, or a path with a q
 character or a leading '-'): exit 2 with one error line naming the parameter, nothing written, nothing
 run. Prints the worst case of each check with the command that reproduces it, and
 writes results/sweep/sweep.json.
-    sweep.py [--n 200] [--seed 20261122] [--jobs 2]"""
+    sweep.py [--n 200] [--seed 20261122] [--jobs 2]
+On a cluster (docs/scaling.md): the cases as a run list (scripts/run_list.py), one per job-array task,
+each task's verdict in <out>/<case>/check.json, then their summary:
+    sweep.py --n 200 --write-list runs.jsonl
+    sweep.py --list runs.jsonl --index K [--out DIR]      (task K)
+    sweep.py --list runs.jsonl --collect [--out DIR]"""
 
 import argparse
 import concurrent.futures
@@ -24,6 +29,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from freefem import ROOT, read_summary, run_driver  # noqa: E402
+import run_list  # noqa: E402
 
 
 def draw_hertz(rng):
@@ -141,11 +147,21 @@ def check_hostile(script, args, out_dir):
     return {"command": cmd, "failed": not ok, "detail": detail, "checks": {}, "seconds": seconds}
 
 
-def check_case(index, script, args, size, out_root):
-    out_dir = os.path.join(out_root, f"case{index:04d}")
+def check_case(name, script, args, size, out_root, processes=1):
+    """The case's run into <out_root>/<name> and its verdict, also written there as check.json."""
+    out_dir = os.path.join(out_root, name)
+    result = run_case(out_dir, script, args, size, processes)
+    folder = out_dir if os.path.isabs(out_dir) else os.path.join(ROOT, out_dir)
+    os.makedirs(folder, exist_ok=True)
+    with open(os.path.join(folder, "check.json"), "w") as f:
+        json.dump(result, f, indent=1)
+    return result
+
+
+def run_case(out_dir, script, args, size, processes):
     if size == "hostile":
         return check_hostile(script, args, out_dir)
-    code, output, seconds = run_driver(script, args, out_dir)
+    code, output, seconds = run_driver(script, args, out_dir, processes=processes)
     s = read_summary(out_dir)
     cmd = f"FreeFem++ {script} {' '.join(args)}"
     checks = {}
@@ -191,16 +207,55 @@ def main():
     parser.add_argument("--seed", type=int, default=20261122)
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 2)
     parser.add_argument("--out", default=os.path.join("results", "sweep"))
+    parser.add_argument("--write-list", help="write the drawn cases as a run list and stop")
+    parser.add_argument("--list", help="run the cases of this run list instead of drawing them")
+    parser.add_argument("--index", type=int, help="with --list: only its case K (a job array's task)")
+    parser.add_argument("--collect", action="store_true", help="with --list: summarise the cases' check.json")
     args = parser.parse_args()
-    rng = random.Random(args.seed)
-    cases = [DRAWS[i % len(DRAWS)](rng) for i in range(args.n)]
+    if args.list:
+        try:
+            cases = run_list.read(args.list)
+            chosen = run_list.select(cases, args.index)
+        except run_list.ListError as e:
+            print(f"error: {e}")
+            return 2
+        if any("size" not in c for c in cases):
+            print(f"error: run list {args.list}: a sweep case needs its size (sweep.py --write-list writes it)")
+            return 2
+    else:
+        rng = random.Random(args.seed)
+        cases = [dict(zip(("script", "args", "size"), DRAWS[i % len(DRAWS)](rng)), name=f"case{i:04d}") for i in range(args.n)]
+        chosen = cases
+    if args.write_list:
+        run_list.write(args.write_list, cases)
+        return 0
+    if args.collect:
+        if not args.list:
+            print("error: --collect needs the run list (--list)")
+            return 2
+        results = []
+        for case in cases:
+            path = os.path.join(args.out if os.path.isabs(args.out) else os.path.join(ROOT, args.out), case["name"], "check.json")
+            if not os.path.exists(path):
+                print(f"error: case {case['name']} has not run: no {path}")
+                return 2
+            results.append(json.load(open(path)))
+        return summarise(results, args)
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
-        futures = [pool.submit(check_case, i, script, a, size, args.out) for i, (script, a, size) in enumerate(cases)]
+        futures = [pool.submit(check_case, c["name"], c["script"], c["args"], c["size"], args.out, c.get("processes", 1))
+                   for c in chosen]
         results = []
         for i, fut in enumerate(futures):
             results.append(fut.result())
-            print(f"case {i + 1}/{args.n}: {'FAILED' if results[-1]['failed'] else 'ok'} "
+            print(f"case {i + 1}/{len(chosen)}: {'FAILED' if results[-1]['failed'] else 'ok'} "
                   f"({results[-1]['seconds']:.1f} s) {results[-1]['command']}", flush=True)
+    if args.index is not None:   # one task: its verdict is in check.json, the summary comes with --collect
+        return 1 if results[0]["failed"] or any(not v <= b and not k.startswith("info_") for k, (v, b) in results[0]["checks"].items()) else 0
+    return summarise(results, args)
+
+
+def summarise(results, args):
+    """The worst case of each check, the failed runs, sweep.json; 1 when any run failed or check was violated."""
     worst = {}
     for res in results:
         for name, (value, bound) in res["checks"].items():
@@ -208,7 +263,8 @@ def main():
                 worst[name] = (value, bound, res["command"])
     failed_runs = [res for res in results if res["failed"]]
     violations = sum(1 for res in results for name, (v, b) in res["checks"].items() if not v <= b and not name.startswith("info_"))
-    print(f"\nsweep: {args.n} cases (seed {args.seed}), {len(failed_runs)} failed runs, {violations} check violations")
+    origin = f"list {args.list}" if args.list else f"seed {args.seed}"
+    print(f"\nsweep: {len(results)} cases ({origin}), {len(failed_runs)} failed runs, {violations} check violations")
     for name, (value, bound, cmd) in sorted(worst.items()):
         verdict = "ok" if value <= bound else ("beyond, not a check" if name.startswith("info_") else "VIOLATED")
         print(f"  worst {name}: {value:.2e} (bound {bound:.0e}) {verdict}\n    {cmd}")
@@ -217,7 +273,8 @@ def main():
     out = args.out if os.path.isabs(args.out) else os.path.join(ROOT, args.out)
     os.makedirs(out, exist_ok=True)
     with open(os.path.join(out, "sweep.json"), "w") as f:
-        json.dump({"n": args.n, "seed": args.seed, "failed_runs": len(failed_runs), "violations": violations,
+        json.dump({"n": len(results), "seed": None if args.list else args.seed, "list": args.list,
+                   "failed_runs": len(failed_runs), "violations": violations,
                    "worst": {k: {"value": v[0], "bound": v[1], "command": v[2]} for k, v in worst.items()},
                    "cases": results}, f, indent=1)
     return 1 if failed_runs or violations else 0

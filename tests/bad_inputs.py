@@ -155,7 +155,7 @@ CASES = [
     (CUBE, ["-pressure", "1e-12"], "-pressure"),
     (CUBE, ["-pressure", "6e-6"], "-pressure"),
     (CUBE, ["-n", "1000000000000"], "-n"),
-    (CUBE, ["-dim", "3", "-n", "40"], "-n"),
+    (CUBE, ["-dim", "3", "-n", "80"], "-n"),
     (PLANE, ["-pressure", "1e-12"], "too small"),
     (PLANE, ["-E", "1e309"], "-E"),
     (PLANE, ["-E", "1e-12"], "too large"),

@@ -1,0 +1,104 @@
+#!/usr/bin/env python3
+"""`make bench`'s runs on several processes (docs/scaling.md): the 3D Hertz sphere, condensed, as
+1 process x 1 thread (FreeFem++), 2 processes x 1 thread (mpirun -np 2 FreeFem++-mpi: MUMPS's
+factorization shared by MPI) and 1 process x 2 threads (FreeFem++, two OpenBLAS threads), with
+each run's factorization phases, wall time, peak memory of every process (GNU time around each) and
+MUMPS's own entries in the factors and flops per process, at 67k, 201k and 508k DOFs.
+Results in scaling.json and SCALING.md in results/performance (--out).
+    scripts/performance/scaling.py [--levels 24,36,50] [--layouts 1x1,2x1,1x2] [--out results/performance]"""
+
+import argparse
+import json
+import os
+import re
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))   # scripts/
+from freefem import MPIRUN, ROOT, read_summary  # noqa: E402
+import md_tables  # noqa: E402
+
+A_SPHERE = 0.1005577   # Hertz radius of the default hertz_sphere (m): h = a / level
+LAYOUTS = {"1x1": (1, 1), "2x1": (2, 1), "1x2": (1, 2)}   # processes x threads
+
+
+def sphere_run(level, layout, out_dir):
+    """hertz_sphere.edp -h a/level as `layout`; a row of measurements, or None when it failed."""
+    processes, threads = LAYOUTS[layout]
+    env = dict(os.environ, OMP_NUM_THREADS=str(threads), OPENBLAS_NUM_THREADS=str(threads))
+    timed = ["/usr/bin/time", "-f", "RANK_PEAK %e %M"]
+    driver = ["-nw", "benchmarks/hertz_sphere.edp", "-h", repr(A_SPHERE / level), "-out", out_dir]
+    if processes == 1:
+        command = timed + ["FreeFem++"] + driver
+    else:   # GNU time around each process; OpenMPI passes the thread counts on with -x
+        command = MPIRUN + [str(processes), "-x", "OMP_NUM_THREADS", "-x", "OPENBLAS_NUM_THREADS"] + timed + ["FreeFem++-mpi"] + driver
+    proc = subprocess.run(command, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
+    s = read_summary(out_dir)
+    peaks = re.findall(r"RANK_PEAK ([\d.]+) (\d+)", proc.stdout)
+    if proc.returncode != 0 or s is None or not s.get("complete"):
+        print(f"sphere a/{level} {layout}: FAILED (exit {proc.returncode})\n" + proc.stdout[-800:], flush=True)
+        return None
+    r = s["results"]
+    row = {"level": level, "layout": layout, "processes": s["mpi_processes"], "ndof": s["ndof"],
+           "wall_s": max(float(p[0]) for p in peaks), "rss_mb_per_process": [int(p[1]) / 1024 for p in peaks],
+           "ordering_s": r["condensation_ordering_s"]["computed"], "analysis_s": r["condensation_analysis_s"]["computed"],
+           "factorization_s": r["condensation_factorization_s"]["computed"],
+           "condensation_s": r["condensation_time_s"]["computed"],
+           "entries_per_process": s["factor_entries_per_process"], "flops_per_process": s["factor_flops_per_process"],
+           "a": r["a"]["computed"], "p_max": r["p_max"]["computed"], "iterations": s["ipopt_iterations"]}
+    print(f"sphere a/{level} {layout}: {row['ndof']} dofs, factorization {row['factorization_s']:.2f} s, "
+          f"wall {row['wall_s']:.1f} s, RSS {'/'.join(f'{m:.0f}' for m in row['rss_mb_per_process'])} MB", flush=True)
+    return row
+
+
+def table(rows):
+    return md_tables.table(
+        ("h", "DOFs", "processes x threads", "ordering (s)", "analysis (s)", "factorization (s)", "condensation (s)", "wall (s)",
+         "peak RSS per process (MB)", "factor entries per process", "flops per process", "a", "factorization speed-up"),
+        [(f"a/{r['level']}", r["ndof"], r["layout"].replace("x", " x "), f"{r['ordering_s']:.2f}", f"{r['analysis_s']:.2f}",
+          f"{r['factorization_s']:.2f}", f"{r['condensation_s']:.2f}", f"{r['wall_s']:.1f}",
+          " / ".join(f"{m:.0f}" for m in r["rss_mb_per_process"]),
+          " / ".join(f"{e:.3g}" for e in r["entries_per_process"]), " / ".join(f"{f:.3g}" for f in r["flops_per_process"]),
+          f"{r['a']:.9g}", f"{r['speedup']:.2f}" if "speedup" in r else "-") for r in rows])
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--levels", default="24,36,50", help="h = a/level: 67k, 201k and 508k DOFs")
+    parser.add_argument("--layouts", default=",".join(LAYOUTS), help="processes x threads, among " + ", ".join(LAYOUTS))
+    parser.add_argument("--out", default="results/performance")
+    args = parser.parse_args()
+    layouts = [x for x in args.layouts.split(",") if x]
+    if not all(x in LAYOUTS for x in layouts):
+        print(f"error: --layouts must be among {', '.join(LAYOUTS)}, got {args.layouts}")
+        return 2
+    rows = []
+    for level in [int(x) for x in args.levels.split(",") if x]:
+        runs = {layout: sphere_run(level, layout, f"{args.out}/scaling_a{level}_{layout}") for layout in layouts}
+        base = runs.get("1x1")
+        for layout, row in runs.items():
+            if row is None:
+                continue
+            if base:
+                row["speedup"] = base["factorization_s"] / row["factorization_s"]
+                row["a_difference"] = abs(row["a"] - base["a"]) / base["a"]
+                row["p_max_difference"] = abs(row["p_max"] - base["p_max"]) / base["p_max"]
+            rows.append(row)
+    out = os.path.join(ROOT, args.out)
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(out, "scaling.json"), "w") as f:
+        json.dump(rows, f, indent=1)
+    text = "# Runs on several processes (scripts/performance/scaling.py)\n\n" + table(rows) + "\n"
+    for r in rows:
+        if r["processes"] > 1:
+            text += (f"\na/{r['level']} on {r['layout']}: {r['ndof']} DOFs, factor entries {sum(r['entries_per_process']):.4g}, "
+                     f"flops {sum(r['flops_per_process']):.4g}, peak RSS in all {sum(r['rss_mb_per_process']) / 1024:.2f} GB, "
+                     f"wall {r['wall_s']:.0f} s\n")
+    with open(os.path.join(out, "SCALING.md"), "w") as f:
+        f.write(text)
+    print(text)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
