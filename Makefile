@@ -33,8 +33,9 @@ convergence: deps
 	$(PYTHON) scripts/hertz_convergence.py --cases plane,circle_vertical,circle_linearized,circle_exact
 
 # timings: Hertz from 10k to 1M DOFs, the cost of contact, IPOPT against Newton, 3D, the
-# volumetric forms, two bodies: results/performance/PERFORMANCE.md; then the 3D sphere on 1 and
-# 2 processes and 2 threads, and at ~540k DOFs on 2 processes: results/performance/SCALING.md
+# volumetric forms, two bodies: results/performance/PERFORMANCE.md; then the 3D sphere (67k to 508k
+# DOFs) and the 3D rubber indentation on 1 process, 2 MPI processes and 2 threads (about 30 minutes):
+# results/performance/SCALING.md
 # PEERS=1: also DOLFINx's SNES-VI solve of the same Hertz meshes and FElupe on the O-ring
 # (installs python3-dolfinx, and FElupe in a venv; 14 minutes in all on the 2-core machine)
 bench: deps

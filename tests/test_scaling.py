@@ -137,18 +137,24 @@ def test_run_lists():
 
 def test_scaling_bench_smoke():
     """`make bench`'s scaling study (scripts/performance/scaling.py) at its smallest, so that it keeps
-    running: the 3D sphere at h = a/8 in the three layouts, the same a in each (the runs solve the
-    same problem) and MUMPS's per-process entries on 2 processes summing to the single process's."""
+    running: the 3D sphere at h = a/8 and the 3D rubber indentation at h = R/8 in the three layouts,
+    the same answer in each (a; the indentation force: the condensed SQP on either MUMPS, to 1e-8 as
+    the MPI runs above) and MUMPS's per-process entries on 2 processes summing to the single process's
+    (the same METIS order, the same factors, only split)."""
     folder = out("scaling smoke")
-    proc = subprocess.run([sys.executable, "scripts/performance/scaling.py", "--levels", "8", "--out", folder],
+    proc = subprocess.run([sys.executable, "scripts/performance/scaling.py", "--levels", "8", "--rubber-levels", "8", "--out", folder],
                           cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     path = os.path.join(folder, "scaling.json")
-    rows = {r["layout"]: r for r in json.load(open(path))} if os.path.exists(path) else {}
-    check("scaling smoke: exit 0 and the three layouts", proc.returncode == 0 and sorted(rows) == ["1x1", "1x2", "2x1"],
+    rows = {(r["case"], r["layout"]): r for r in json.load(open(path))} if os.path.exists(path) else {}
+    check("scaling smoke: exit 0 and both cases in the three layouts", proc.returncode == 0 and len(rows) == 6,
           proc.stdout.strip().splitlines()[-2:])
-    if len(rows) == 3:
-        check("scaling smoke: the same a in every layout (1e-8)",
-              all(abs(r["a"] - rows["1x1"]["a"]) <= 1e-8 * rows["1x1"]["a"] for r in rows.values()), str([r["a"] for r in rows.values()]))
-        check("scaling smoke: 2 processes' entries sum to one process's",
-              len(rows["2x1"]["entries_per_process"]) == 2 and sum(rows["2x1"]["entries_per_process"]) == rows["1x1"]["entries_per_process"][0],
-              f"{rows['2x1']['entries_per_process']} vs {rows['1x1']['entries_per_process']}")
+    for case in ("sphere", "indentation"):
+        runs = [rows.get((case, layout)) for layout in ("1x1", "2x1", "1x2")]
+        if None in runs:
+            continue
+        one, two, threads = runs
+        check(f"scaling smoke {case}: the same {one['answer_name']} in every layout (1e-8)",
+              all(abs(r["answer"] - one["answer"]) <= 1e-8 * abs(one["answer"]) for r in runs), str([r["answer"] for r in runs]))
+        check(f"scaling smoke {case}: 2 processes' entries sum to one process's",
+              len(two["entries_per_process"]) == 2 and sum(two["entries_per_process"]) == one["entries_per_process"][0],
+              f"{two['entries_per_process']} vs {one['entries_per_process']}")

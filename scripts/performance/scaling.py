@@ -1,11 +1,14 @@
 #!/usr/bin/env python3
-"""`make bench`'s runs on several processes (docs/scaling.md): the 3D Hertz sphere, condensed, as
+"""`make bench`'s runs on several processes (docs/scaling.md): the 3D Hertz sphere, condensed, and
+the 3D rubber indentation (the nodal form's condensed SQP), each as
 1 process x 1 thread (FreeFem++), 2 processes x 1 thread (mpirun -np 2 FreeFem++-mpi: MUMPS's
 factorization shared by MPI) and 1 process x 2 threads (FreeFem++, two OpenBLAS threads), with
 each run's factorization phases, wall time, peak memory of every process (GNU time around each) and
-MUMPS's own entries in the factors and flops per process, at 67k, 201k and 508k DOFs.
+MUMPS's own entries in the factors and flops per process: the sphere at 67k, 201k and 508k DOFs,
+the indentation at 85k.
 Results in scaling.json and SCALING.md in results/performance (--out).
-    scripts/performance/scaling.py [--levels 24,36,50] [--layouts 1x1,2x1,1x2] [--out results/performance]"""
+    scripts/performance/scaling.py [--levels 24,36,50] [--rubber-levels 32] [--layouts 1x1,2x1,1x2]
+                                   [--out results/performance]"""
 
 import argparse
 import json
@@ -20,14 +23,19 @@ import md_tables  # noqa: E402
 
 A_SPHERE = 0.1005577   # Hertz radius of the default hertz_sphere (m): h = a / level
 LAYOUTS = {"1x1": (1, 1), "2x1": (2, 1), "1x2": (1, 2)}   # processes x threads
+# the cases: driver, its arguments at a level, the answer compared across layouts
+CASES = {"sphere": ("benchmarks/hertz_sphere.edp", lambda level: ["-h", repr(A_SPHERE / level)], "a"),
+         # 3D rubber: the nodal form's saddle point matrix factorized at every SQP iteration (h = R/level)
+         "indentation": ("benchmarks/indentation.edp", lambda level: ["-dim", "3", "-h", repr(1.0 / level)], "force")}
 
 
-def sphere_run(level, layout, out_dir):
-    """hertz_sphere.edp -h a/level as `layout`; a row of measurements, or None when it failed."""
+def layout_run(case, level, layout, out_dir):
+    """The case at h = size/level as `layout`; a row of measurements, or None when it failed."""
+    script, arguments, answer = CASES[case]
     processes, threads = LAYOUTS[layout]
     env = dict(os.environ, OMP_NUM_THREADS=str(threads), OPENBLAS_NUM_THREADS=str(threads))
     timed = ["/usr/bin/time", "-f", "RANK_PEAK %e %M"]
-    driver = ["-nw", "benchmarks/hertz_sphere.edp", "-h", repr(A_SPHERE / level), "-out", out_dir]
+    driver = ["-nw", script] + arguments(level) + ["-out", out_dir]
     if processes == 1:
         command = timed + ["FreeFem++"] + driver
     else:   # GNU time around each process; OpenMPI passes the thread counts on with -x
@@ -36,35 +44,37 @@ def sphere_run(level, layout, out_dir):
     s = read_summary(out_dir)
     peaks = re.findall(r"RANK_PEAK ([\d.]+) (\d+)", proc.stdout)
     if proc.returncode != 0 or s is None or not s.get("complete"):
-        print(f"sphere a/{level} {layout}: FAILED (exit {proc.returncode})\n" + proc.stdout[-800:], flush=True)
+        print(f"{case} 1/{level} {layout}: FAILED (exit {proc.returncode})\n" + proc.stdout[-800:], flush=True)
         return None
     r = s["results"]
-    row = {"level": level, "layout": layout, "processes": s["mpi_processes"], "ndof": s["ndof"],
+    row = {"case": case, "level": level, "layout": layout, "processes": s["mpi_processes"], "ndof": s["ndof"],
            "wall_s": max(float(p[0]) for p in peaks), "rss_mb_per_process": [int(p[1]) / 1024 for p in peaks],
            "ordering_s": r["condensation_ordering_s"]["computed"], "analysis_s": r["condensation_analysis_s"]["computed"],
            "factorization_s": r["condensation_factorization_s"]["computed"],
-           "condensation_s": r["condensation_time_s"]["computed"],
+           "factorizations": s["timings"]["factorizations"], "all_factorizations_s": r["factorization_time_s"]["computed"],
            "entries_per_process": s["factor_entries_per_process"], "flops_per_process": s["factor_flops_per_process"],
-           "a": r["a"]["computed"], "p_max": r["p_max"]["computed"], "iterations": s["ipopt_iterations"]}
-    print(f"sphere a/{level} {layout}: {row['ndof']} dofs, factorization {row['factorization_s']:.2f} s, "
+           "answer_name": answer, "answer": r[answer]["computed"], "iterations": s["ipopt_iterations"]}
+    print(f"{case} 1/{level} {layout}: {row['ndof']} dofs, {row['factorizations']} factorizations in {row['all_factorizations_s']:.2f} s, "
           f"wall {row['wall_s']:.1f} s, RSS {'/'.join(f'{m:.0f}' for m in row['rss_mb_per_process'])} MB", flush=True)
     return row
 
 
 def table(rows):
     return md_tables.table(
-        ("h", "DOFs", "processes x threads", "ordering (s)", "analysis (s)", "factorization (s)", "condensation (s)", "wall (s)",
-         "peak RSS per process (MB)", "factor entries per process", "flops per process", "a", "factorization speed-up"),
-        [(f"a/{r['level']}", r["ndof"], r["layout"].replace("x", " x "), f"{r['ordering_s']:.2f}", f"{r['analysis_s']:.2f}",
-          f"{r['factorization_s']:.2f}", f"{r['condensation_s']:.2f}", f"{r['wall_s']:.1f}",
+        ("case", "h", "DOFs", "processes x threads", "first: ordering (s)", "analysis (s)", "factorization (s)", "factorizations",
+         "all factorizations (s)", "wall (s)", "peak RSS per process (MB)", "factor entries per process", "flops per process",
+         "answer", "factorization speed-up"),
+        [(r["case"], f"1/{r['level']}", r["ndof"], r["layout"].replace("x", " x "), f"{r['ordering_s']:.2f}", f"{r['analysis_s']:.2f}",
+          f"{r['factorization_s']:.2f}", r["factorizations"], f"{r['all_factorizations_s']:.2f}", f"{r['wall_s']:.1f}",
           " / ".join(f"{m:.0f}" for m in r["rss_mb_per_process"]),
           " / ".join(f"{e:.3g}" for e in r["entries_per_process"]), " / ".join(f"{f:.3g}" for f in r["flops_per_process"]),
-          f"{r['a']:.9g}", f"{r['speedup']:.2f}" if "speedup" in r else "-") for r in rows])
+          f"{r['answer_name']} {r['answer']:.9g}", f"{r['speedup']:.2f}" if "speedup" in r else "-") for r in rows])
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--levels", default="24,36,50", help="h = a/level: 67k, 201k and 508k DOFs")
+    parser.add_argument("--levels", default="24,36,50", help="the sphere at h = a/level: 67k, 201k and 508k DOFs")
+    parser.add_argument("--rubber-levels", default="32", help="the 3D indentation at h = R/level (85k DOFs)")
     parser.add_argument("--layouts", default=",".join(LAYOUTS), help="processes x threads, among " + ", ".join(LAYOUTS))
     parser.add_argument("--out", default="results/performance")
     args = parser.parse_args()
@@ -73,17 +83,17 @@ def main():
         print(f"error: --layouts must be among {', '.join(LAYOUTS)}, got {args.layouts}")
         return 2
     rows = []
-    for level in [int(x) for x in args.levels.split(",") if x]:
-        runs = {layout: sphere_run(level, layout, f"{args.out}/scaling_a{level}_{layout}") for layout in layouts}
-        base = runs.get("1x1")
-        for layout, row in runs.items():
-            if row is None:
-                continue
-            if base:
-                row["speedup"] = base["factorization_s"] / row["factorization_s"]
-                row["a_difference"] = abs(row["a"] - base["a"]) / base["a"]
-                row["p_max_difference"] = abs(row["p_max"] - base["p_max"]) / base["p_max"]
-            rows.append(row)
+    for case, levels in (("sphere", args.levels), ("indentation", args.rubber_levels)):
+        for level in [int(x) for x in levels.split(",") if x]:
+            runs = {layout: layout_run(case, level, layout, f"{args.out}/scaling_{case}_{level}_{layout}") for layout in layouts}
+            base = runs.get("1x1")
+            for layout, row in runs.items():
+                if row is None:
+                    continue
+                if base:
+                    row["speedup"] = base["all_factorizations_s"] / row["all_factorizations_s"]
+                    row["answer_difference"] = abs(row["answer"] - base["answer"]) / abs(base["answer"])
+                rows.append(row)
     out = os.path.join(ROOT, args.out)
     os.makedirs(out, exist_ok=True)
     with open(os.path.join(out, "scaling.json"), "w") as f:
@@ -91,7 +101,7 @@ def main():
     text = "# Runs on several processes (scripts/performance/scaling.py)\n\n" + table(rows) + "\n"
     for r in rows:
         if r["processes"] > 1:
-            text += (f"\na/{r['level']} on {r['layout']}: {r['ndof']} DOFs, factor entries {sum(r['entries_per_process']):.4g}, "
+            text += (f"\n{r['case']} 1/{r['level']} on {r['layout']}: {r['ndof']} DOFs, factor entries {sum(r['entries_per_process']):.4g}, "
                      f"flops {sum(r['flops_per_process']):.4g}, peak RSS in all {sum(r['rss_mb_per_process']) / 1024:.2f} GB, "
                      f"wall {r['wall_s']:.0f} s\n")
     with open(os.path.join(out, "SCALING.md"), "w") as f:
