@@ -114,7 +114,7 @@ HOSTILE_PARAMS = {
     "benchmarks/indentation.edp": (["E", "depth", "block", "h"], ["out"]),
     "benchmarks/cattaneo.edp": (["mu", "ratio", "pressure", "h", "travel", "hold"], ["out"]),
     "benchmarks/bar_impact.edp": (["dt", "tend", "v0", "rho", "n", "cfl", "every"], ["out"]),
-    "benchmarks/sphere_impact.edp": (["v0", "R", "dt", "zone", "rho"], ["out"]),
+    "benchmarks/sphere_impact.edp": (["v0", "R", "dt", "zone", "rho", "candidates"], ["out"]),
     "benchmarks/bars_head_on.edp": (["v0", "gap", "nA", "dt"], ["out"]),
     "benchmarks/patch_test.edp": (["pressure", "n1", "n2", "mu"], ["out"]),
 }

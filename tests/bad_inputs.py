@@ -64,6 +64,8 @@ CASES = [
     (SPHERE_IMPACT, ["-dt", "0"], "-dt"),
     (SPHERE_IMPACT, ["-zone", "1e-5"], "-zone"),
     (SPHERE_IMPACT, ["-rho", "-1"], "-rho"),
+    (SPHERE_IMPACT, ["-dim", "2"], "-dim"),
+    (SPHERE_IMPACT, ["-dim", "3", "-candidates", "1e-5"], "-candidates"),
     (BARS, ["-gap", "1"], "-gap"),
     (BARS, ["-nA", "1"], "-nA"),
     (BARS, ["-tend", "0"], "-tend"),

@@ -46,7 +46,8 @@ def test_sphere_impact():
     (nu = 0.499, the nodal form) against a rigid wall (axisymmetric, Newmark, redistributed mass):
     Hertz's contact time and peak force within the verdicts' 3 % (measured 1.5 % and 1.1 %; Neo-Hookean
     1.0 % and 0.96 %; rubber 1.5 % and 1.6 %), the sphere back at v0 and its energy kept (1e-3;
-    measured 2e-6 to 3e-5), the equilibrium with inertia at every step."""
+    measured 2e-6 to 3e-5), the equilibrium with inertia at every step; and the 3D quarter sphere."""
+    runs = {}
     for name in ("sphere_impact", "sphere_impact_rubber", "sphere_impact_neohookean"):
         args = next(a for n, _, a in benchmark_list.BENCHMARKS if n == name)
         s = run_summary(name, "benchmarks/sphere_impact.edp", args + ["-every", "0"])
@@ -60,6 +61,24 @@ def test_sphere_impact():
         check(f"{name}: equilibrium with inertia at every step (1e-8)", r["dynamics_balance_rel_error"]["computed"] <= 1e-8,
               f"{r['dynamics_balance_rel_error']['computed']:.1e}")
         check(f"{name}: no penetration", r["max_penetration"]["computed"] <= 1e-10 * 0.02)
+        runs[name] = s
+    # the 3D quarter (-dim 3) on a coarser mesh and step (h = a_max / 6, dt = t_c / 100): Hertz within
+    # the verdicts' bounds (measured 2.0 % and 1.3 %), and the axisymmetric run's peak force within 1 %
+    # (an independent path: measured 0.2 %) and its contact time within two of the 3D run's steps
+    s = run_summary("sphere impact 3D", "benchmarks/sphere_impact.edp", ["-dim", "3", "-h", "2.8e-5", "-dt", "8.306e-7", "-every", "0"])
+    if s is not None:
+        r = s["results"]
+        for q in ("contact_time", "peak_force", "rebound_velocity", "energy_ratio"):
+            bound = verdicts.bound("sphere_impact_3d", q)
+            check(f"sphere impact 3D: {q} within {bound:.0e} of Hertz's impact", r[q]["rel_error"] <= bound, f"{r[q]['rel_error']:.2e}")
+        check("sphere impact 3D: equilibrium with inertia at every step (1e-8)", r["dynamics_balance_rel_error"]["computed"] <= 1e-8)
+        check("sphere impact 3D: no penetration", r["max_penetration"]["computed"] <= 1e-10 * 0.02)
+        axi = runs.get("sphere_impact")
+        if axi:
+            f3, fa = r["peak_force"]["computed"], axi["results"]["peak_force"]["computed"]
+            check("sphere impact 3D: the axisymmetric run's peak force within 1 %", abs(f3 - fa) <= 1e-2 * fa, f"{f3:.6g} vs {fa:.6g}")
+            t3, ta = r["contact_time"]["computed"], axi["results"]["contact_time"]["computed"]
+            check("sphere impact 3D: the axisymmetric run's contact time within two 3D steps", abs(t3 - ta) <= 2 * 8.306e-7, f"{t3:.6g} vs {ta:.6g}")
 
 
 def test_bars_head_on():
