@@ -100,12 +100,7 @@ def main(argv):
         run_list.write(args.write_list, [{"name": n, "script": s, "args": a} for n, s, a in BENCHMARKS])
         return 0
     if args.list:
-        try:
-            runs = run_list.read(args.list)
-            chosen = run_list.select(runs, args.index)
-        except run_list.ListError as e:
-            print(f"error: {e}")
-            return 2
+        runs, chosen = run_list.load(args.list, args.index)
         if args.table:
             return table([r["name"] for r in runs], args.out)
         ok = all([run_one(r["name"], r["script"], r.get("args", []), args.out, r.get("processes", 1)) for r in chosen])

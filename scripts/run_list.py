@@ -9,6 +9,7 @@ or '.'; a script is a driver of the suite (benchmarks/*.edp)."""
 
 import json
 import re
+import sys
 
 NAME = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.-]*$")
 
@@ -55,6 +56,20 @@ def read(path):
         names.add(name)
         runs.append(run)
     return runs
+
+
+def load(path, index, required=()):
+    """The runs of the list and those to run now (all, or the one at index), each with the keys
+    `required` too; an unusable list is one error line and exit code 2."""
+    try:
+        runs = read(path)
+        missing = [k for k in required if any(k not in run for run in runs)]
+        if missing:
+            raise ListError(f"run list {path}: every run needs {', '.join(missing)}")
+        return runs, select(runs, index)
+    except ListError as e:
+        print(f"error: {e}")
+        sys.exit(2)
 
 
 def select(runs, index):

@@ -212,16 +212,8 @@ def main():
     parser.add_argument("--index", type=int, help="with --list: only its case K (a job array's task)")
     parser.add_argument("--collect", action="store_true", help="with --list: summarise the cases' check.json")
     args = parser.parse_args()
-    if args.list:
-        try:
-            cases = run_list.read(args.list)
-            chosen = run_list.select(cases, args.index)
-        except run_list.ListError as e:
-            print(f"error: {e}")
-            return 2
-        if any("size" not in c for c in cases):
-            print(f"error: run list {args.list}: a sweep case needs its size (sweep.py --write-list writes it)")
-            return 2
+    if args.list:   # a sweep case carries its size (sweep.py --write-list writes it)
+        cases, chosen = run_list.load(args.list, args.index, required=("size",))
     else:
         rng = random.Random(args.seed)
         cases = [dict(zip(("script", "args", "size"), DRAWS[i % len(DRAWS)](rng)), name=f"case{i:04d}") for i in range(args.n)]

@@ -73,7 +73,8 @@ def test_mpi_refusals():
     errors = [l for l in output.splitlines() if l.startswith("error:")]
     check("mpi -solver newton: one error line and exit 2", code == 2 and len(errors) == 1 and "Newton" in errors[0], f"exit {code}: {errors}")
     folder = out("mpi sequential twice")
-    command = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", "2", "FreeFem++", "-nw", "benchmarks/hertz_plane.edp", "-out", folder]
+    from freefem import MPIRUN
+    command = MPIRUN + ["2", "FreeFem++", "-nw", "benchmarks/hertz_plane.edp", "-out", folder]
     proc = subprocess.run(command, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=600)
     errors = [l for l in proc.stdout.splitlines() if l.startswith("error:")]
     check("mpirun FreeFem++: exit 2", proc.returncode == 2, f"exit {proc.returncode}")
