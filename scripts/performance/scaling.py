@@ -6,7 +6,7 @@ factorization shared by MPI) and 1 process x 2 threads (FreeFem++, two OpenBLAS 
 each run's factorization phases, wall time, peak memory of every process (GNU time around each) and
 MUMPS's own entries in the factors and flops per process: the sphere at 67k, 201k and 508k DOFs,
 the indentation at 85k.
-Results in scaling.json and SCALING.md in results/performance (--out).
+Results in scaling.json, SCALING.md and scaling.png in results/performance (--out).
     scripts/performance/scaling.py [--levels 24,36,50] [--rubber-levels 32] [--layouts 1x1,2x1,1x2]
                                    [--out results/performance]"""
 
@@ -63,12 +63,51 @@ def table(rows):
     return md_tables.table(
         ("case", "h", "DOFs", "processes x threads", "first: ordering (s)", "analysis (s)", "factorization (s)", "factorizations",
          "all factorizations (s)", "wall (s)", "peak RSS per process (MB)", "factor entries per process", "flops per process",
-         "answer", "factorization speed-up"),
+         "answer", "speed-up, all factorizations"),
         [(r["case"], f"1/{r['level']}", r["ndof"], r["layout"].replace("x", " x "), f"{r['ordering_s']:.2f}", f"{r['analysis_s']:.2f}",
           f"{r['factorization_s']:.2f}", r["factorizations"], f"{r['all_factorizations_s']:.2f}", f"{r['wall_s']:.1f}",
           " / ".join(f"{m:.0f}" for m in r["rss_mb_per_process"]),
           " / ".join(f"{e:.3g}" for e in r["entries_per_process"]), " / ".join(f"{f:.3g}" for f in r["flops_per_process"]),
           f"{r['answer_name']} {r['answer']:.9g}", f"{r['speedup']:.2f}" if "speedup" in r else "-") for r in rows])
+
+
+def figure(rows, path):
+    """Two panels: each case's speed-up over 1 x 1 in all its factorizations (ordering, analysis and
+    numerical phase: 2 processes, 2 threads), and the
+    peak memory, one process against the largest of two and their sum."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    cases = []
+    for r in rows:
+        key = (r["case"], r["level"])
+        if key not in cases:
+            cases.append(key)
+    by = {(r["case"], r["level"], r["layout"]): r for r in rows}
+    labels = [f"{'sphere a' if c == 'sphere' else 'rubber R'}/{l}\n{by.get((c, l, '1x1'), {}).get('ndof', 0):,} DOFs" for c, l in cases]
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
+    x = range(len(cases))
+    for offset, layout, colour in ((-0.2, "2x1", "tab:blue"), (0.2, "1x2", "tab:orange")):
+        values = [by[(c, l, layout)]["speedup"] if (c, l, layout) in by and "speedup" in by[(c, l, layout)] else 0 for c, l in cases]
+        left.bar([i + offset for i in x], values, 0.4, color=colour,
+                 label="2 processes x 1 thread (MPI)" if layout == "2x1" else "1 process x 2 threads")
+    left.axhline(1, color="black", linewidth=0.8)
+    left.axhline(2, color="grey", linewidth=0.8, linestyle="--")
+    left.set_xticks(list(x)); left.set_xticklabels(labels, fontsize=8)
+    left.set_ylabel("speed-up over 1 x 1, all factorizations"); left.set_ylim(0, 2.2); left.legend(fontsize=8, loc="lower right")
+    left.set_title("The condensed factorizations (ordering, analysis, numerical) on 2 cores", fontsize=10)
+    one = [by[(c, l, "1x1")]["rss_mb_per_process"][0] / 1024 if (c, l, "1x1") in by else 0 for c, l in cases]
+    largest = [max(by[(c, l, "2x1")]["rss_mb_per_process"]) / 1024 if (c, l, "2x1") in by else 0 for c, l in cases]
+    total = [sum(by[(c, l, "2x1")]["rss_mb_per_process"]) / 1024 if (c, l, "2x1") in by else 0 for c, l in cases]
+    right.bar([i - 0.27 for i in x], one, 0.27, color="tab:grey", label="1 process")
+    right.bar(list(x), largest, 0.27, color="tab:blue", label="2 processes: the larger")
+    right.bar([i + 0.27 for i in x], total, 0.27, color="tab:cyan", label="2 processes: both")
+    right.set_xticks(list(x)); right.set_xticklabels(labels, fontsize=8)
+    right.set_ylabel("peak memory (GB)"); right.legend(fontsize=8)
+    right.set_title("Peak memory: the factors split, the mesh and assembly copied", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
 
 
 def main():
@@ -104,6 +143,9 @@ def main():
             text += (f"\n{r['case']} 1/{r['level']} on {r['layout']}: {r['ndof']} DOFs, factor entries {sum(r['entries_per_process']):.4g}, "
                      f"flops {sum(r['flops_per_process']):.4g}, peak RSS in all {sum(r['rss_mb_per_process']) / 1024:.2f} GB, "
                      f"wall {r['wall_s']:.0f} s\n")
+    if rows:
+        figure(rows, os.path.join(out, "scaling.png"))
+        text += "\n![factorization speed-up and memory](scaling.png)\n"
     with open(os.path.join(out, "SCALING.md"), "w") as f:
         f.write(text)
     print(text)
