@@ -58,6 +58,7 @@ long launchedProcesses() {
 }
 
 void init() {
+  mpiBridge();   // under MPI, opened now: a missing bridge is one error line before any work
   if (mpisize > 1 && mpirank > 0) {
     int null = open("/dev/null", O_WRONLY);
     fflush(stdout);
