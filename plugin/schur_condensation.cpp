@@ -232,21 +232,26 @@ static int factorWith(Condensation &c, int sym) {
 }
 
 // The lower triangle of K's entries first..last-1 on the free dofs (1-based), and with
-// withFixed 1 on each fixed dof's diagonal.
+// withFixed 1 on each fixed dof's diagonal; the values too unless `values` is null (the pattern only).
 static void lowerTriangle(const MatriceMorse<double> &K, const KN<double> &fixed, size_t first, size_t last, bool withFixed,
-                          std::vector<int> &rows, std::vector<int> &columns, std::vector<double> &values) {
+                          std::vector<int> &rows, std::vector<int> &columns, std::vector<double> *values) {
   size_t room = (last - first)/2 + (withFixed ? K.n : 0);
-  rows.reserve(room); columns.reserve(room); values.reserve(room);
+  rows.reserve(room); columns.reserve(room);
+  if (values) values->reserve(room);
   for (size_t k = first; k < last; k++) {
     long i = K.i[k], j = K.j[k];
     if (fixed[i] != 0 || fixed[j] != 0) continue;
     if (!K.half && j > i) continue;
     if (K.half && j > i) std::swap(i, j);
-    rows.push_back(int(i + 1)); columns.push_back(int(j + 1)); values.push_back(K.aij[k]);
+    rows.push_back(int(i + 1)); columns.push_back(int(j + 1));
+    if (values) values->push_back(K.aij[k]);
   }
   if (withFixed)
     for (long i = 0; i < K.n; i++)
-      if (fixed[i] != 0) { rows.push_back(int(i + 1)); columns.push_back(int(i + 1)); values.push_back(1.); }
+      if (fixed[i] != 0) {
+        rows.push_back(int(i + 1)); columns.push_back(int(i + 1));
+        if (values) values->push_back(1.);
+      }
 }
 
 static long schurFactor(Matrice_Creuse<double> *const &pK, KN<double> *const &pFixed, KN<long> *const &pSchur,
@@ -266,7 +271,7 @@ static long schurFactor(Matrice_Creuse<double> *const &pK, KN<double> *const &pF
   size_t first = size_t(double(K->nnz)*mpirank/processes), last = size_t(double(K->nnz)*(mpirank + 1)/processes);
   std::vector<int> rows, columns, schurList(nSchur);
   std::vector<double> values;
-  lowerTriangle(*K, fixed, first, last, c.host(), rows, columns, values);
+  lowerTriangle(*K, fixed, first, last, c.host(), rows, columns, &values);
   for (long s = 0; s < nSchur; s++) {
     ffassert(schurDofs[s] >= 0 && schurDofs[s] < n && fixed[schurDofs[s]] == 0);
     schurList[s] = int(schurDofs[s] + 1);
@@ -296,10 +301,8 @@ static long schurFactor(Matrice_Creuse<double> *const &pK, KN<double> *const &pF
     // pattern, the others pass no order (MUMPS reads PERM_IN on process 0 only)
     if (!samePattern && !c.bridge) nestedDissectionOrder(c, c.rows, c.columns);
     if (!samePattern && c.bridge && c.host()) {
-      std::vector<int> allRows, allColumns;
-      std::vector<double> allValues;
-      lowerTriangle(*K, fixed, 0, K->nnz, true, allRows, allColumns, allValues);
-      std::vector<double>().swap(allValues);
+      std::vector<int> allRows, allColumns;   // the whole pattern, no values: freed once ordered
+      lowerTriangle(*K, fixed, 0, K->nnz, true, allRows, allColumns, nullptr);
       nestedDissectionOrder(c, allRows, allColumns);
     }
     t1 = clockNow();
