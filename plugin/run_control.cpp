@@ -24,10 +24,12 @@
 namespace {
 
 long exitRun(long code) {
-  // under MPI every process fails at the same point: the others give process 0 two seconds to
-  // print its error line and end the job (mpirun stops all at the first failed exit, and stopped
-  // process 0's last lines unprinted when another process was first)
-  if (code != 0 && mpisize > 1 && mpirank > 0) sleep(2);
+  // under MPI every process fails at the same point: the others leave it to process 0 to print its
+  // error line and end the job (mpirun stops all at the first failed exit, and stopped process 0's
+  // last lines unprinted when another process was first). They wait for mpirun to stop them, not a
+  // fixed while that a loaded machine could outlast, and end by themselves after a minute only if
+  // process 0 went on (a failure of theirs alone)
+  if (code != 0 && mpisize > 1 && mpirank > 0) sleep(60);
   cout.flush();
   cerr.flush();
   fflush(stdout);
