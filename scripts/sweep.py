@@ -116,6 +116,7 @@ HOSTILE_PARAMS = {
     "benchmarks/bar_impact.edp": (["dt", "tend", "v0", "rho", "n", "cfl", "every"], ["out"]),
     "benchmarks/sphere_impact.edp": (["v0", "R", "dt", "zone", "rho", "candidates"], ["out"]),
     "benchmarks/bars_head_on.edp": (["v0", "gap", "nA", "dt"], ["out"]),
+    "benchmarks/discs_head_on.edp": (["v0", "gap", "R", "dt", "h"], ["out"]),
     "benchmarks/patch_test.edp": (["pressure", "n1", "n2", "mu"], ["out"]),
 }
 
