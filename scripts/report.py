@@ -291,24 +291,34 @@ def fig_sliding_disc(name, filename):
                   filename)
 
 
-def fig_cattaneo(name, filename):
-    """The shear traction of the last tangential step against Cattaneo's, with mu p (the slip bound)."""
+def fig_partial_slip(name, filename, coordinate, reference, zone_key, title, keys):
+    """The shear traction of the last tangential step against the analytic one (Cattaneo's or
+    Mindlin's), with mu p (the slip bound) and the fitted stick zone."""
     data = curve_figure(name, "shear.csv")
     if not data:
         return None
     s, rows, fig, ax = data
-    rows = sorted(rows, key=lambda r: float(r["x"]))
-    x, mu = column(rows, "x"), s["parameters"]["mu"]
+    rows = sorted(rows, key=lambda r: float(r[coordinate]))
+    x, mu = column(rows, coordinate), s["parameters"]["mu"]
     ax.plot(x, mu * column(rows, "pressure"), ":", color="0.5", label="mu p (the slip bound)")
-    ax.plot(x, column(rows, "cattaneo_shear"), "k-", lw=1.2, label="Cattaneo")
+    ax.plot(x, column(rows, reference), "k-", lw=1.2, label=reference.split("_")[0].capitalize())
     ax.plot(x, column(rows, "shear"), "o", ms=3.5, label="computed (nodal shear traction)")
-    r = s["results"]
-    c = r.get("stick_half_width", {}).get("computed")
+    c = s["results"].get(zone_key, {}).get("computed")
     if c:
-        ax.axvspan(-c, c, color="tab:green", alpha=0.08, label=f"stick zone |x| < c = {c:.4g}")
-    return finish(fig, ax, "x", "shear traction q",
-                  "Cattaneo's partial slip: two cylinders, Q = " + f"{s['parameters']['ratio']:.3g}" + " mu P\n"
-                  + params_text(s, ["E", "nu", "R", "pressure", "mu", "h"]), filename)
+        low = -c if coordinate == "x" else 0
+        ax.axvspan(low, c, color="tab:green", alpha=0.08, label=f"stick zone {coordinate} < c = {c:.4g}")
+    return finish(fig, ax, coordinate, "shear traction q",
+                  title + ", Q = " + f"{s['parameters']['ratio']:.3g}" + " mu P\n" + params_text(s, keys), filename)
+
+
+def fig_cattaneo(name, filename):
+    return fig_partial_slip(name, filename, "x", "cattaneo_shear", "stick_half_width",
+                            "Cattaneo's partial slip: two cylinders", ["E", "nu", "R", "pressure", "mu", "h"])
+
+
+def fig_mindlin(name, filename):
+    return fig_partial_slip(name, filename, "r", "mindlin_shear", "stick_radius",
+                            "Mindlin's partial slip: two spheres (3D)", ["E", "nu", "R", "force", "mu", "h"])
 
 
 def fig_oring_friction(names, filename):
@@ -593,16 +603,18 @@ def sections():
          "step. Frictionless, the sideways force stays near zero; the vertical force ripples as the contact nodes "
          "cross the block's facets, 0.5 % at h = R/40, 0.1 % at R/80.", [
             lambda: fig_sliding_disc("sliding_disc", "sliding_disc_forces.png")]),
-        ("Coulomb friction: Cattaneo's partial slip, exact stick, sliding",
-         ["cattaneo", "cattaneo_hold", "cattaneo_sliding", "sliding_disc_friction", "oring_plates_friction",
+        ("Coulomb friction: Cattaneo's and Mindlin's partial slip, exact stick, sliding",
+         ["cattaneo", "cattaneo_hold", "cattaneo_sliding", "mindlin_sphere", "sliding_disc_friction", "oring_plates_friction",
           "hertz_sphere_friction", "hertz_sphere_axisymmetric_friction"],
          "Friction over a load step is a dissipation sum g |slip| with one slack per contact row in the condensed "
          "reduced problem, no smoothing; Coulomb's bounds g = mu N come from the multipliers by a fixed point. Two "
          "identical cylinders pressed and then sheared (dolfinx_contact's set-up) meet Cattaneo's stick zone and "
-         "shear traction; held at 0.99 mu P for 50 steps the platen does not move (exact stick); driven past mu P "
+         "shear traction, two identical spheres Mindlin's stick radius and tangential displacement (3D); held at 0.99 mu P "
+         "for 50 steps the platen does not move (exact stick); driven past mu P "
          "every node slides with q = mu p. Coulomb's law is checked at every node of every step of every friction "
          "run (docs/benchmarks/friction.md).", [
             lambda: fig_cattaneo("cattaneo", "cattaneo_shear.png"),
+            lambda: fig_mindlin("mindlin_sphere", "mindlin_shear.png"),
             lambda: fig_oring_friction(["oring_plates", "oring_plates_friction"], "oring_friction_force.png")]),
         ("Dynamics: a bar and a sphere against a rigid wall, two bars and two discs head on (implicit time steps)",
          ["bar_impact", "sphere_impact", "sphere_impact_neohookean", "sphere_impact_rubber", "sphere_impact_3d", "bars_head_on", "discs_head_on"],
@@ -727,7 +739,7 @@ HEADLINES = [
     ("3D Hertz", "Hertz, 3D and axisymmetric sphere", [("hertz_sphere", "a"), ("hertz_sphere_axisymmetric", "a")]),
     ("Contact between two elastic bodies", "Two elastic bodies", [("hertz_two_cylinders", "a"), ("hertz_two_spheres", "a")]),
     ("O-ring between elastic flanges", "O-ring, elastic flanges", [("oring_flange_steel", "action_reaction_rel_error")]),
-    ("Coulomb friction", "Coulomb friction (Cattaneo)", [("cattaneo", "stick_half_width"), ("cattaneo_hold", "hold_tangential_drift")]),
+    ("Coulomb friction", "Coulomb friction (Cattaneo, Mindlin)", [("cattaneo", "stick_half_width"), ("mindlin_sphere", "stick_radius")]),
     ("Dynamics", "Dynamics: impact", [("bar_impact", "rebound_velocity"), ("sphere_impact", "peak_force")]),
     ("The contact patch test", "Contact patch test", [("patch_test", "pressure_spread"), ("patch_test", "stress_error_rel")]),
     ("Large sliding", "Large sliding", [("sliding_disc", "sideways_force_ratio")]),

@@ -61,6 +61,35 @@ def test_cattaneo_pair():
     check(f"{label}: stick_zone.csv has one row per tangential step", len(lines) == 1 + s["parameters"]["steps"], f"{len(lines)} lines")
 
 
+def test_mindlin_sphere():
+    """Two identical spheres (3D, the halves y >= 0), pressed and then sheared to Q = 0.8 mu P, the
+    default mesh a/8: Mindlin's stick radius within the verdict's 4 % (measured 3.3 % low; the issue
+    asks 3 %) and tangential displacement within 2 % (measured 1.9 %, once the bodies' own compliance
+    beyond the half-space, measured by the bonded step, is taken off: 11 % high before), Hertz's a
+    within 1 % (0.32 %); Coulomb's law held to the run's gate in 3D (the polish: 4.9e-8 at -tol 1e-9;
+    IPOPT alone left 4e-6 at -tol 1e-8)."""
+    label = "mindlin sphere"
+    s = run_summary(label, "benchmarks/mindlin_sphere.edp", bench_args("mindlin_sphere"))
+    if s is None:
+        return
+    r = s["results"]
+    for q in ("stick_radius", "tangential_displacement", "a", "tangential_force", "normal_force"):
+        bound = verdicts.bound("mindlin_sphere", q)
+        check(f"{label}: {q} within {bound:.0e} of its reference", r[q]["rel_error"] <= bound, f"{r[q]['rel_error']:.2e}")
+    check_coulomb(label, s, "mindlin_sphere")
+    # the correction is the bodies' own: positive, and of the size a shear through the hemispheres' narrowing
+    # sections gives (2 ln(R / a) / (2 pi G R) = 2.5e-3 here, against the bonded 2.4e-2)
+    far, bonded = r["far_compliance"]["computed"], r["bonded_compliance"]["computed"]
+    check(f"{label}: the bodies' compliance beyond Mindlin's is positive and below a fifth of the bonded one",
+          0 < far < 0.2 * bonded, f"{far:.3g} of {bonded:.3g}")
+    rows = friction_rows(label)
+    states = {row["status"] for row in rows}
+    check(f"{label}: both stick and slip nodes (partial slip)", {"stick", "slip"} <= states, str(states))
+    zone = os.path.join(out(label), "stick_zone.csv")
+    lines = open(zone).read().splitlines() if os.path.exists(zone) else []
+    check(f"{label}: stick_zone.csv has one row per tangential step", len(lines) == 1 + s["parameters"]["steps"], f"{len(lines)} lines")
+
+
 def test_cattaneo_hold():
     """Exact stick: Q held at 0.99 mu P for 50 load steps, each step's slips measured from the last:
     the platen does not move after the first held step (relative change <= 1e-10; measured 1e-14,
