@@ -17,6 +17,7 @@ CYLINDERS, SPHERES = "benchmarks/hertz_two_cylinders.edp", "benchmarks/hertz_two
 FLANGE, SLIDING = "benchmarks/oring_flange.edp", "benchmarks/sliding_disc.edp"
 INDENTATION, CATTANEO, BAR = "benchmarks/indentation.edp", "benchmarks/cattaneo.edp", "benchmarks/bar_impact.edp"
 PATCH, SPHERE_IMPACT, BARS = "benchmarks/patch_test.edp", "benchmarks/sphere_impact.edp", "benchmarks/bars_head_on.edp"
+DISCS, MINDLIN = "benchmarks/discs_head_on.edp", "benchmarks/mindlin_sphere.edp"
 
 # (driver, arguments ({tmp} is a scratch folder holding the files of make_files), the word the
 # error line must contain)
@@ -69,6 +70,12 @@ CASES = [
     (BARS, ["-gap", "1"], "-gap"),
     (BARS, ["-nA", "1"], "-nA"),
     (BARS, ["-tend", "0"], "-tend"),
+    (DISCS, ["-gap", "0.01"], "-gap"),
+    (DISCS, ["-v0", "-1"], "-v0"),
+    (DISCS, ["-tend", "0"], "-tend"),
+    (MINDLIN, ["-mu", "0"], "-mu"),
+    (MINDLIN, ["-ratio", "1.5"], "-ratio"),
+    (MINDLIN, ["-steps", "0"], "-steps"),
     (PATCH, ["-n1", "0"], "-n1"),
     (PATCH, ["-pass", "three"], "-pass"),
     (PATCH, ["-pressure", "-1"], "-pressure"),
