@@ -300,7 +300,9 @@ def fig_partial_slip(name, filename, coordinate, reference, zone_key, title, key
     s, rows, fig, ax = data
     rows = sorted(rows, key=lambda r: float(r[coordinate]))
     x, mu = column(rows, coordinate), s["parameters"]["mu"]
-    ax.plot(x, mu * column(rows, "pressure"), ":", color="0.5", label="mu p (the slip bound)")
+    # (3D: the nodes at one r carry different pressures, so mu p as points, not a line)
+    ax.plot(x, mu * column(rows, "pressure"), ":" if coordinate == "x" else ".", color="0.6", ms=3,
+            label="mu p (the slip bound)")
     ax.plot(x, column(rows, reference), "k-", lw=1.2, label=reference.split("_")[0].capitalize())
     ax.plot(x, column(rows, "shear"), "o", ms=3.5, label="computed (nodal shear traction)")
     c = s["results"].get(zone_key, {}).get("computed")
