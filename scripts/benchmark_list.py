@@ -42,6 +42,7 @@ BENCHMARKS = [
     ("cattaneo_hold", "benchmarks/cattaneo.edp", ["-ratio", "0.99", "-hold", "50", "-h", "0.034"]),
     ("cattaneo_sliding", "benchmarks/cattaneo.edp", ["-travel", "0.15", "-steps", "3", "-h", "0.034"]),
     ("mindlin_sphere", "benchmarks/mindlin_sphere.edp", []),
+    ("mindlin_sphere_hold", "benchmarks/mindlin_sphere.edp", ["-ratio", "0.99", "-hold", "10", "-steps", "2", "-h", "0.0515"]),
     ("sliding_disc_friction", "benchmarks/sliding_disc.edp", ["-mu", "0.3"]),
     ("oring_plates_friction", "benchmarks/oring.edp", ["-case", "plates", "-mu", "0.3"]),
     ("hertz_sphere_friction", "benchmarks/hertz_sphere.edp", ["-mu", "0.3"]),

@@ -606,7 +606,7 @@ def sections():
          "cross the block's facets, 0.5 % at h = R/40, 0.1 % at R/80.", [
             lambda: fig_sliding_disc("sliding_disc", "sliding_disc_forces.png")]),
         ("Coulomb friction: Cattaneo's and Mindlin's partial slip, exact stick, sliding",
-         ["cattaneo", "cattaneo_hold", "cattaneo_sliding", "mindlin_sphere", "sliding_disc_friction", "oring_plates_friction",
+         ["cattaneo", "cattaneo_hold", "cattaneo_sliding", "mindlin_sphere", "mindlin_sphere_hold", "sliding_disc_friction", "oring_plates_friction",
           "hertz_sphere_friction", "hertz_sphere_axisymmetric_friction"],
          "Friction over a load step is a dissipation sum g |slip| with one slack per contact row in the condensed "
          "reduced problem, no smoothing; Coulomb's bounds g = mu N come from the multipliers by a fixed point. Two "

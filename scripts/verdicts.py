@@ -156,6 +156,11 @@ _add(["mindlin_sphere"], ["normal_force", "tangential_force"], Check("exact", 1e
 _add(["mindlin_sphere"], ["shear_l2_rel_error", "tangential_displacement_uncorrected", "bonded_compliance", "far_compliance"],
      Check("info", note="the nodal shear of a 3D mesh scatters (20 % L2 at a/8); delta before the correction 11 % high "
                         "(docs/benchmarks/friction.md)"))
+_add(["mindlin_sphere_hold"], ["hold_tangential_drift"],
+     Check("exact", 1e-10, "value", note="exact stick in 3D (the polish): 10 steps at 0.99 mu P move the platen by 6.1e-14"))
+_add(["mindlin_sphere_hold"], ["a", "stick_radius", "tangential_displacement", "shear_l2_rel_error", "normal_force",
+                               "tangential_force", "tangential_displacement_uncorrected", "bonded_compliance", "far_compliance"],
+     Check("info", note="the coarse mesh a/5 of the held-load check"))
 _add(["cattaneo_hold"], ["hold_tangential_drift"],
      Check("exact", 1e-10, "value", note="exact stick: 50 steps at 0.99 mu P move the platen by nothing (measured 8e-15)"))
 _add(["cattaneo_sliding"], ["tangential_force"],
@@ -179,10 +184,10 @@ def _coulomb_gate(benchmarks, tol, why):
 
 _coulomb_gate(["sliding_disc_friction"], 1e-8, "the polish does not apply under the updated pairing (measured 2.2e-7)")
 _coulomb_gate(["hertz_sphere_friction"], 1e-8, "the bounds' fixed point stops there (measured 2.5e-7)")
-_coulomb_gate(["mindlin_sphere"], 1e-9, "the bounds' fixed point stops there (measured 4.9e-8)")
+_coulomb_gate(["mindlin_sphere", "mindlin_sphere_hold"], 1e-9, "the bounds' fixed point stops there (measured 4.9e-8)")
 _coulomb_gate(["hertz_sphere_axisymmetric_friction"], 1e-8, "the polish leaves a node or two (measured 9.4e-8)")
 _coulomb_gate(["oring_plates_friction"], 1e-7, "the SQP's models (measured 6.6e-6)")
-_add(_FRICTION + ["oring_plates_friction", "mindlin_sphere"], ["dissipated_energy"], Check("exact", None, "positive", note="friction dissipates"))
+_add(_FRICTION + ["oring_plates_friction", "mindlin_sphere", "mindlin_sphere_hold"], ["dissipated_energy"], Check("exact", None, "positive", note="friction dissipates"))
 _add(["oring_plates_friction"], ["force_c0.1", "force_c0.2", "force_c0.3"],
      Check("info", note="Lindley's law is frictionless; mu = 0.3 raises the c = 0.2 force by 1.7 % (docs/benchmarks/friction.md)"))
 _add(["hertz_sphere_friction", "hertz_sphere_axisymmetric_friction"], ["a", "p_max", "pressure_l2_rel_error"],
