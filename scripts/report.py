@@ -308,7 +308,8 @@ def fig_partial_slip(name, filename, coordinate, reference, zone_key, title, key
     c = s["results"].get(zone_key, {}).get("computed")
     if c:
         low = -c if coordinate == "x" else 0
-        ax.axvspan(low, c, color="tab:green", alpha=0.08, label=f"stick zone {coordinate} < c = {c:.4g}")
+        shown = "|x|" if coordinate == "x" else coordinate
+        ax.axvspan(low, c, color="tab:green", alpha=0.08, label=f"stick zone {shown} < c = {c:.4g}")
     return finish(fig, ax, coordinate, "shear traction q",
                   title + ", Q = " + f"{s['parameters']['ratio']:.3g}" + " mu P\n" + params_text(s, keys), filename)
 
