@@ -54,5 +54,6 @@ BENCHMARKS = [
     ("sphere_impact", "benchmarks/sphere_impact.edp", []),
     ("sphere_impact_neohookean", "benchmarks/sphere_impact.edp", ["-material", "neohookean"]),
     ("sphere_impact_rubber", "benchmarks/sphere_impact.edp", ["-E", "2.998e6", "-nu", "0.499", "-rho", "1000", "-v0", "0.005"]),
+    ("sphere_impact_incompressible", "benchmarks/sphere_impact.edp", ["-E", "3e6", "-nu", "0.5", "-rho", "1000", "-v0", "0.005"]),
     ("sphere_impact_3d", "benchmarks/sphere_impact.edp", ["-dim", "3"]),
 ]
