@@ -619,9 +619,9 @@ def sections():
             lambda: fig_cattaneo("cattaneo", "cattaneo_shear.png"),
             lambda: fig_mindlin("mindlin_sphere", "mindlin_shear.png"),
             lambda: fig_oring_friction(["oring_plates", "oring_plates_friction"], "oring_friction_force.png")]),
-        ("Dynamics: a bar and a sphere against a rigid wall, two bars and two discs head on (implicit time steps)",
+        ("Dynamics: a bar and a sphere against a rigid wall, two bars, two discs and two spheres head on (implicit time steps)",
          ["bar_impact", "sphere_impact", "sphere_impact_neohookean", "sphere_impact_rubber", "sphere_impact_incompressible",
-          "sphere_impact_3d", "bars_head_on", "discs_head_on"],
+          "sphere_impact_3d", "bars_head_on", "discs_head_on", "spheres_head_on"],
          "Each time step of Newmark's trapezoidal rule is one minimisation of the incremental potential (inertia plus "
          "stored energy) under the contact rows, warm from the predictor. An elastic bar flying at 100 m/s hits a rigid "
          "wall (Code_Aster SDNV100): with no mass on the contact nodes (redistributed to their neighbours) the contact "
