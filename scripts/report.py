@@ -366,8 +366,9 @@ def fig_bar_impact(name, filename):
     return save(fig, filename)
 
 
-def fig_sphere_impact(name, filename):
-    """The contact force of the sphere's impact against time, with Hertz's t_c and F_max."""
+def fig_sphere_impact(name, pair, filename):
+    """The contact force of the sphere's impact against time, with Hertz's t_c and F_max; and two spheres
+    head on (the pair's run, its time from their first touch): the same Hertz impact."""
     s, rows = summary(name), read_csv(os.path.join(RESULTS, name, "history.csv"))
     if not s or not rows:
         return None
@@ -375,12 +376,18 @@ def fig_sphere_impact(name, filename):
     tc, fmax = r["contact_time"]["reference"], r["peak_force"]["reference"]
     fig, ax = plt.subplots(figsize=(7, 4.2))
     t = column(rows, "time")
-    ax.plot(t * 1e6, column(rows, "contact_force"), "o", ms=3, label="computed")
+    ax.plot(t * 1e6, column(rows, "contact_force"), "o", ms=6, mfc="none", label="one sphere against a wall")
+    s2, rows2 = summary(pair), read_csv(os.path.join(RESULTS, pair, "history.csv"))
+    if s2 and rows2:
+        p = s2["parameters"]
+        touch = p["gap"] / (2 * p["v0"])
+        ax.plot((column(rows2, "time") - touch) * 1e6, column(rows2, "contact_force"), "x", ms=4,
+                label="two spheres head on (each at v0; from their touch)")
     ts = np.linspace(0, tc, 200)
     ax.plot(ts * 1e6, fmax * np.sin(np.pi * ts / tc) ** 1.5, "k--", lw=1,
             label="Hertz: t_c and F_max (the curve between them: F_max sin(pi t / t_c)^1.5)")
     return finish(fig, ax, "time (us)", "contact force (N)",
-                  "Sphere against a wall (axisymmetric): contact force\n" + params_text(s, ["R", "E", "nu", "rho", "v0", "scheme", "mass"]),
+                  "Sphere impact (axisymmetric): contact force\n" + params_text(s, ["R", "E", "nu", "rho", "v0", "scheme", "mass"]),
                   filename)
 
 
@@ -629,9 +636,10 @@ def sections():
          "to 1e-4; with mass on them the contact force chatters and the energy grows six-fold. A steel sphere meets Hertz's "
          "impact theory (contact time and peak force) within 1.5 %, a rubber one within 1.6 % (the nodal form; 1.8 % "
          "exactly incompressible, nu = 0.5); two "
-         "equal bars, and two equal discs, meeting head on exchange their velocities (docs/benchmarks/dynamics.md).", [
+         "equal bars, two equal discs and two equal spheres meeting head on exchange their velocities, the spheres "
+         "again as Hertz's impact says (docs/benchmarks/dynamics.md).", [
             lambda: fig_bar_impact("bar_impact", "bar_impact_history.png"),
-            lambda: fig_sphere_impact("sphere_impact", "sphere_impact_force.png")]),
+            lambda: fig_sphere_impact("sphere_impact", "spheres_head_on", "sphere_impact_force.png")]),
         ("Clamped square under its own weight (preprint 4.3)", ["clamped_square"],
          "A steel square clamped on one side bends onto a rigid wall under its own weight; the upper part presses, "
          "the lower part lifts off. No analytic answer exists: the references come from our own P2 mesh study "
