@@ -105,7 +105,7 @@ def test_sphere_impact_3d():
 def test_bars_head_on():
     """Two equal bars meeting head on (a contact pair between two bodies, the mass redistributed off
     both sides' contact nodes): the velocities exchanged within the verdicts' 2 % (measured 1.1 %),
-    the contact for 2 L / c, the total momentum kept to 1e-10 of a bar's (measured 2.8e-12), the
+    the contact for 2 L / c, the total momentum kept to 1e-10 of a bar's (measured 3.8e-13), the
     energy after separation to 1e-3 (measured 6.5e-5)."""
     s = run_summary("bars head on", "benchmarks/bars_head_on.edp", ["-every", "0"])
     if s is None:
@@ -125,7 +125,7 @@ def test_discs_head_on():
     Newmark with the mass off both sides' contact nodes): the velocities exchanged within the
     verdicts' 1 % (measured 0.67 %: 1.3 % of the energy stays in the discs' vibrations, the contact
     lasting about a period of the discs' lowest mode), the energy after separation to 1e-3 (measured
-    7.5e-5), the total momentum kept to 1e-10 of a disc's (measured 2.9e-13, the issue's 1e-10)."""
+    7.5e-5), the total momentum kept to 1e-10 of a disc's (measured 1.0e-13, the issue's 1e-10)."""
     s = run_summary("discs head on", "benchmarks/discs_head_on.edp", ["-every", "0"])
     if s is None:
         return
@@ -147,7 +147,7 @@ def test_spheres_head_on():
     impact of the pair (relative velocity 2 v0, reduced mass m / 2, radius R / 2, modulus
     E / (2 (1 - nu^2)): the same contact time as one sphere against a rigid wall) within the verdicts'
     3 % (measured 1.5 % and 0.99 %), the velocities exchanged and the energy kept to 1e-3 (measured
-    5.2e-6 and 6e-7), the total momentum to 1e-10 of a sphere's (measured 3.9e-12)."""
+    5.2e-6 and 6e-7), the total momentum to 1e-10 of a sphere's (measured 5.0e-13)."""
     args = next(a for n, _, a in benchmark_list.BENCHMARKS if n == "spheres_head_on")
     s = run_summary("spheres head on", "benchmarks/discs_head_on.edp", args + ["-every", "0"])
     if s is None:
