@@ -51,7 +51,7 @@
 //    P1 tetrahedra: [K_el, R^T; R, -diag(compliance)] with K_el the tangent of 5 and R = Q C, row n
 //    sum over the tetrahedra T of vertex n of |T| / 4 dJ_T/dU, dJ_T/du_(b,i) = sum_j cof(F_T)_ij
 //    g_b[j] (cofactors the 9 P0 arrays of cof F, compliance V_n / K_n per vertex): 3 nv + nv
-//    unknowns, the pressure of vertex n last (3 nv + n). diagonal receives the diagonal of the
+//    unknowns, the pressure of vertex n last (3 nv + n), scaled by |R_n| / compliance_n. diagonal receives the diagonal of the
 //    tangent it stands for, K_el + R^T diag(1 / compliance) R, on the 3 nv displacement dofs (the
 //    condensed SQP shifts an indefinite tangent relative to it). At 12,825 dofs FreeFEM's varf,
 //    sparse products and block matrix took 0.66 s a tangent.
@@ -534,6 +534,15 @@ long nodalSaddle3D(pmesh3 const &pTh, KN<double> *const &pA, KN<double> *const &
       }
     }
   }
+  // the pressure unknowns scaled, p_n = s_n q_n, s_n = |R_n| / compliance_n: the scale of
+  // include/body/volumetric.idp (saddlePressureScales), which says why
+  std::vector<double> scale(nv, 1.);
+  for (long n = 0; n < nv; n++) {
+    double norm2 = 0;
+    for (long w = rowStart[n]; w < rowStart[n + 1]; w++)
+      for (int i = 0; i < 3; i++) norm2 += rcoef[3 * w + i] * rcoef[3 * w + i];
+    if (norm2 > 0 && compliance[n] > 0) scale[n] = std::sqrt(norm2) / compliance[n];
+  }
   KN<double> &diagonal = *pDiagonal;
   diagonal.resize(3 * nv);
   for (long a = 0; a < nv; a++) {
@@ -555,11 +564,11 @@ long nodalSaddle3D(pmesh3 const &pTh, KN<double> *const &pA, KN<double> *const &
           rows[e] = int(3 * a + i); columns[e] = int(3 * b + c); values[e] = block[9 * w + 3 * i + c]; e++;
         }
       for (int i = 0; i < 3; i++) {   // R (row 3 nv + a, column 3 b + i) and its transpose
-        rows[e] = int(3 * nv + a); columns[e] = int(3 * b + i); values[e] = rcoef[3 * w + i]; e++;
-        rows[e] = int(3 * b + i); columns[e] = int(3 * nv + a); values[e] = rcoef[3 * w + i]; e++;
+        rows[e] = int(3 * nv + a); columns[e] = int(3 * b + i); values[e] = scale[a] * rcoef[3 * w + i]; e++;
+        rows[e] = int(3 * b + i); columns[e] = int(3 * nv + a); values[e] = scale[a] * rcoef[3 * w + i]; e++;
       }
     }
-  for (long n = 0; n < nv; n++) { rows[e] = int(3 * nv + n); columns[e] = int(3 * nv + n); values[e] = -compliance[n]; e++; }
+  for (long n = 0; n < nv; n++) { rows[e] = int(3 * nv + n); columns[e] = int(3 * nv + n); values[e] = -compliance[n] * scale[n] * scale[n]; e++; }
   ffassert(e == entries);
   HashMatrix<int, double> *M = new HashMatrix<int, double>(int(size), int(size), 0, 0);
   M->set(int(size), int(size), 0, size_t(entries), rows.data(), columns.data(), values.data());
