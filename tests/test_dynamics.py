@@ -83,8 +83,8 @@ def test_sphere_impact_rubber_neohookean():
 def test_sphere_impact_3d_rubber_neohookean():
     """The rubber-like sphere in 3D with a Neo-Hookean law in the nodal form (the condensed SQP on the
     saddle point matrix, inertia added, pressures scaled: body/volumetric.idp, saddlePressureScales),
-    on a coarse mesh (h = 1.2e-4 = a_max / 2.5) at dt = t_c / 100. Unscaled, the first step's SQP
-    stalled (at dt = t_c / 60: 25 iterations, exit 3). Against Hertz: the peak force within the verdicts' 3 %
+    on a coarse mesh (h = 1.2e-4 = a_max / 2.5) at dt = t_c / 100. Unscaled, this run's first step's
+    SQP stalled (25 iterations, exit 3). Against Hertz: the peak force within the verdicts' 3 %
     (measured 0.57 %), the sphere back at v0 and its energy kept; the equilibrium with inertia at every
     step (1e-8). An independent path: the linear law's nodal form (no SQP: one reduced problem a step)
     on the same mesh and steps. The two laws differ by a fraction of the contact's strain (a_max / R
