@@ -52,6 +52,7 @@ BENCHMARKS = [
     ("bars_head_on", "benchmarks/bars_head_on.edp", []),
     ("discs_head_on", "benchmarks/discs_head_on.edp", []),
     ("spheres_head_on", "benchmarks/discs_head_on.edp", ["-dim", "axi"]),
+    ("spheres_head_on_3d", "benchmarks/discs_head_on.edp", ["-dim", "3", "-h", "4e-5"]),
     ("sphere_impact", "benchmarks/sphere_impact.edp", []),
     ("sphere_impact_neohookean", "benchmarks/sphere_impact.edp", ["-material", "neohookean"]),
     ("sphere_impact_rubber", "benchmarks/sphere_impact.edp", ["-E", "2.998e6", "-nu", "0.499", "-rho", "1000", "-v0", "0.005"]),

@@ -366,9 +366,9 @@ def fig_bar_impact(name, filename):
     return save(fig, filename)
 
 
-def fig_sphere_impact(name, pair, filename):
+def fig_sphere_impact(name, pairs, filename):
     """The contact force of the sphere's impact against time, with Hertz's t_c and F_max; and two spheres
-    head on (the pair's run, its time from their first touch): the same Hertz impact."""
+    head on (the pairs' runs, axisymmetric and 3D, their time from the first touch): the same Hertz impact."""
     s, rows = summary(name), read_csv(os.path.join(RESULTS, name, "history.csv"))
     if not s or not rows:
         return None
@@ -377,17 +377,18 @@ def fig_sphere_impact(name, pair, filename):
     fig, ax = plt.subplots(figsize=(7, 4.2))
     t = column(rows, "time")
     ax.plot(t * 1e6, column(rows, "contact_force"), "o", ms=6, mfc="none", label="one sphere against a wall")
-    s2, rows2 = summary(pair), read_csv(os.path.join(RESULTS, pair, "history.csv"))
-    if s2 and rows2:
-        p = s2["parameters"]
-        touch = p["gap"] / (2 * p["v0"])
-        ax.plot((column(rows2, "time") - touch) * 1e6, column(rows2, "contact_force"), "x", ms=4,
-                label="two spheres head on (each at v0; from their touch)")
+    for pair, marker, model in zip(pairs, ("x", "+"), ("axisymmetric", "3D quarters")):
+        s2, rows2 = summary(pair), read_csv(os.path.join(RESULTS, pair, "history.csv"))
+        if s2 and rows2:
+            p = s2["parameters"]
+            touch = p["gap"] / (2 * p["v0"])
+            ax.plot((column(rows2, "time") - touch) * 1e6, column(rows2, "contact_force"), marker, ms=4,
+                    label=f"two spheres head on, {model} (each at v0; from their touch)")
     ts = np.linspace(0, tc, 200)
     ax.plot(ts * 1e6, fmax * np.sin(np.pi * ts / tc) ** 1.5, "k--", lw=1,
             label="Hertz: t_c and F_max (the curve between them: F_max sin(pi t / t_c)^1.5)")
     return finish(fig, ax, "time (us)", "contact force (N)",
-                  "Sphere impact (axisymmetric): contact force\n" + params_text(s, ["R", "E", "nu", "rho", "v0", "scheme", "mass"]),
+                  "Sphere impact: contact force\n" + params_text(s, ["R", "E", "nu", "rho", "v0", "scheme", "mass"]),
                   filename)
 
 
@@ -628,7 +629,7 @@ def sections():
             lambda: fig_oring_friction(["oring_plates", "oring_plates_friction"], "oring_friction_force.png")]),
         ("Dynamics: a bar and a sphere against a rigid wall, two bars, two discs and two spheres head on (implicit time steps)",
          ["bar_impact", "sphere_impact", "sphere_impact_neohookean", "sphere_impact_rubber", "sphere_impact_incompressible",
-          "sphere_impact_3d", "bars_head_on", "discs_head_on", "spheres_head_on"],
+          "sphere_impact_3d", "bars_head_on", "discs_head_on", "spheres_head_on", "spheres_head_on_3d"],
          "Each time step of Newmark's trapezoidal rule is one minimisation of the incremental potential (inertia plus "
          "stored energy) under the contact rows, warm from the predictor. An elastic bar flying at 100 m/s hits a rigid "
          "wall (Code_Aster SDNV100): with no mass on the contact nodes (redistributed to their neighbours) the contact "
@@ -639,7 +640,7 @@ def sections():
          "equal bars, two equal discs and two equal spheres meeting head on exchange their velocities, the spheres "
          "again as Hertz's impact says (docs/benchmarks/dynamics.md).", [
             lambda: fig_bar_impact("bar_impact", "bar_impact_history.png"),
-            lambda: fig_sphere_impact("sphere_impact", "spheres_head_on", "sphere_impact_force.png")]),
+            lambda: fig_sphere_impact("sphere_impact", ["spheres_head_on", "spheres_head_on_3d"], "sphere_impact_force.png")]),
         ("Clamped square under its own weight (preprint 4.3)", ["clamped_square"],
          "A steel square clamped on one side bends onto a rigid wall under its own weight; the upper part presses, "
          "the lower part lifts off. No analytic answer exists: the references come from our own P2 mesh study "

@@ -73,7 +73,7 @@ CASES = [
     (DISCS, ["-gap", "0.01"], "-gap"),
     (DISCS, ["-v0", "-1"], "-v0"),
     (DISCS, ["-tend", "0"], "-tend"),
-    (DISCS, ["-dim", "3"], "-dim"),
+    (DISCS, ["-dim", "2"], "-dim"),
     (MINDLIN, ["-mu", "0"], "-mu"),
     (MINDLIN, ["-ratio", "1.5"], "-ratio"),
     (MINDLIN, ["-steps", "0"], "-steps"),
