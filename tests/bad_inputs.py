@@ -74,6 +74,7 @@ CASES = [
     (DISCS, ["-v0", "-1"], "-v0"),
     (DISCS, ["-tend", "0"], "-tend"),
     (DISCS, ["-dim", "2"], "-dim"),
+    (DISCS, ["-dim", "3", "-candidates", "1e-5"], "-candidates"),
     (MINDLIN, ["-mu", "0"], "-mu"),
     (MINDLIN, ["-ratio", "1.5"], "-ratio"),
     (MINDLIN, ["-steps", "0"], "-steps"),
