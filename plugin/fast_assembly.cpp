@@ -51,10 +51,10 @@
 //    P1 tetrahedra: [K_el, R^T; R, -diag(compliance)] with K_el the tangent of 5 and R = Q C, row n
 //    sum over the tetrahedra T of vertex n of |T| / 4 dJ_T/dU, dJ_T/du_(b,i) = sum_j cof(F_T)_ij
 //    g_b[j] (cofactors the 9 P0 arrays of cof F, compliance V_n / K_n per vertex): 3 nv + nv
-//    unknowns, the pressure of vertex n last (3 nv + n), scaled by |R_n| / compliance_n. diagonal receives the diagonal of the
-//    tangent it stands for, K_el + R^T diag(1 / compliance) R, on the 3 nv displacement dofs (the
-//    condensed SQP shifts an indefinite tangent relative to it). At 12,825 dofs FreeFEM's varf,
-//    sparse products and block matrix took 0.66 s a tangent.
+//    unknowns, the pressure of vertex n last (3 nv + n), scaled by |R_n| / compliance_n. diagonal
+//    receives the diagonal of the tangent it stands for, K_el + R^T diag(1 / compliance) R, on the
+//    3 nv displacement dofs (the condensed SQP shifts an indefinite tangent relative to it). At
+//    12,825 dofs FreeFEM's varf, sparse products and block matrix took 0.66 s a tangent.
 // They return the number of entries stored (1, 2, 5, 7) or of values (3, 4, 6).
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
