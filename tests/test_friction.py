@@ -63,11 +63,11 @@ def test_cattaneo_pair():
 
 def test_mindlin_sphere():
     """Two identical spheres (3D, the halves y >= 0), pressed and then sheared to Q = 0.8 mu P, the
-    default mesh a/8: Mindlin's stick radius within the verdict's 4 % (measured 3.3 % low; the issue
-    asks 3 %) and tangential displacement within 2 % (measured 1.9 %, once the bodies' own compliance
-    beyond the half-space, measured by the bonded step, is taken off: 11 % high before), Hertz's a
-    within 1 % (0.32 %); Coulomb's law held to the run's gate in 3D (the polish: 4.9e-8 at -tol 1e-9;
-    IPOPT alone left 4e-6 at -tol 1e-8)."""
+    default mesh a/10: Mindlin's stick radius within the issue's 3 % (measured 2.6 % low; 3.3 % at a/8)
+    and tangential displacement within 2 % (measured 1.8 %, once the bodies' own compliance beyond the
+    half-space, measured by the bonded step, is taken off: 11 % high before), Hertz's a within 1 %
+    (0.17 %); Coulomb's law to the verdict's 1e-10 (Coulomb's polish: 2.2e-15; the Tresca polish left
+    4.9e-8 at -tol 1e-9, IPOPT alone 4e-6 at -tol 1e-8)."""
     label = "mindlin sphere"
     s = run_summary(label, "benchmarks/mindlin_sphere.edp", bench_args("mindlin_sphere"))
     if s is None:
