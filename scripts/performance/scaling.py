@@ -34,7 +34,15 @@ def layout_run(case, level, layout, out_dir):
     script, arguments, answer = CASES[case]
     processes, threads = LAYOUTS[layout]
     env = dict(os.environ, OMP_NUM_THREADS=str(threads), OPENBLAS_NUM_THREADS=str(threads))
-    timed = ["/usr/bin/time", "-f", "RANK_PEAK %e %M"]
+    # each process's GNU time appends its one line to a file beside the output folder, not to the
+    # output mpirun forwards from the ranks: a fresh machine's run under load once came back with no
+    # whole "RANK_PEAK" line in it (the line a rank writes as it exits: lost or interleaved), and the
+    # study stopped at "max() arg is an empty sequence"
+    peak_file = os.path.join(ROOT, out_dir) + "_rank_peaks.txt"
+    os.makedirs(os.path.dirname(peak_file), exist_ok=True)
+    if os.path.exists(peak_file):
+        os.remove(peak_file)
+    timed = ["/usr/bin/time", "-a", "-o", peak_file, "-f", "RANK_PEAK %e %M"]
     driver = ["-nw", script] + arguments(level) + ["-out", out_dir]
     if processes == 1:
         command = timed + ["FreeFem++"] + driver
@@ -42,8 +50,8 @@ def layout_run(case, level, layout, out_dir):
         command = MPIRUN + [str(processes), "-x", "OMP_NUM_THREADS", "-x", "OPENBLAS_NUM_THREADS"] + timed + ["FreeFem++-mpi"] + driver
     proc = subprocess.run(command, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
     s = read_summary(out_dir)
-    peaks = re.findall(r"RANK_PEAK ([\d.]+) (\d+)", proc.stdout)
-    if proc.returncode != 0 or s is None or not s.get("complete"):
+    peaks = re.findall(r"RANK_PEAK ([\d.]+) (\d+)", open(peak_file).read()) if os.path.exists(peak_file) else []
+    if proc.returncode != 0 or s is None or not s.get("complete") or len(peaks) != processes:
         print(f"{case} 1/{level} {layout}: FAILED (exit {proc.returncode})\n" + proc.stdout[-800:], flush=True)
         return None
     r = s["results"]
