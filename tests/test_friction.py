@@ -109,7 +109,7 @@ def test_mindlin_hold():
 def test_cattaneo_hold():
     """Exact stick: Q held at 0.99 mu P for 50 load steps, each step's slips measured from the last:
     the platen does not move after the first held step (relative change <= 1e-10; measured 1e-14,
-    the active-set polish of condensed_solve.idp; without it IPOPT alone crept by 2.5e-5)."""
+    the active-set polish of solve/friction_polish.idp; without it IPOPT alone crept by 2.5e-5)."""
     label = "cattaneo hold"
     s = run_summary(label, CATTANEO, bench_args("cattaneo_hold"))
     if s is None:

@@ -4,7 +4,7 @@ from helpers import *  # noqa: F401,F403 (check, out, run_driver, read_summary, 
 
 
 def test_condensed_path():
-    """The condensed solve (include/solve/condensed_solve.idp) against the full KKT path on the same
+    """The condensed solve (include/solve/condensation.idp and the files after it) against the full KKT path on the same
     problems: the interior dofs are eliminated exactly, so both paths find the same minimiser up to
     IPOPT's tolerance (1e-8 on the scaled KKT error): a, p_max and the contact force to 1e-6 relative,
     the L2 error of p (relative to p_max) to 1e-6 absolute (measured: at most 9e-9 and 2e-8); each

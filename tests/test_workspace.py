@@ -117,26 +117,73 @@ def test_external_commands():
     check(f"external commands: the {len(found)} programs used are all provided", not missing, str(missing))
 
 
-def test_include_layout():
-    """The layers (issue 27): every include/ file states what it needs, is guarded against a second
-    inclusion (IFMACRO(!included<Path>) ... ENDIFMACRO) and includes others only above its own
-    code; contact does not reach into the body's rows; a driver that includes the prelude twice
-    still runs; docs/reserved_names.md lists the names include/ defines (scripts/reserved_names.py)."""
+def include_files():
+    """include/'s files, as paths relative to include/."""
     import glob as _glob
-    files = sorted(_glob.glob(os.path.join(ROOT, "include", "**", "*.idp"), recursive=True))
+    paths = sorted(_glob.glob(os.path.join(ROOT, "include", "**", "*.idp"), recursive=True))
+    return [os.path.relpath(p, os.path.join(ROOT, "include")) for p in paths]
+
+
+def guard_of(rel):
+    return "included" + "".join(p[:1].upper() + p[1:] for p in re.split(r"[\W_]", rel[:-4]))
+
+
+def needs_of(text):
+    """A file's header: whether it needs the driver's set-up, the suite files its Needs line names
+    (a registry's member names its registry apart: 'R, which includes it'), and that registry."""
+    header = "\n".join(l[2:] for l in text.splitlines() if l.startswith("//"))
+    m = re.search(r"Needs:((?:[^.]|\.(?=idp|md))*)\.", header, re.S)
+    needs = m.group(1) if m else ""
+    registry = re.search(r"(\S+\.idp), which includes it", needs)
+    if registry:
+        needs = needs.replace(registry.group(0), "")
+    files = re.findall(r"[\w/]+\.idp", needs.split("(docs/architecture.md")[-1] if "driver's set-up" in needs else needs)
+    return "the driver's set-up" in needs, files, registry.group(1) if registry else None
+
+
+# what a driver provides before model.idp (docs/architecture.md): the prelude and a law, a dimension
+# file, the mesh Th and the vector space Vh
+DRIVER_SETUP = ('include "prelude.idp"\nsetLinearElastic(1, 0.3);\ninclude "dim2.idp"\nmesh Th = square(3, 3);\n'
+                'fespace Vh(Th, vectorFE(P1));\n')
+
+
+def test_include_layout():
+    """The layers (issues 27 and 41): every include/ file states what it needs, is guarded against a
+    second inclusion (IFMACRO(!included<Path>) ... ENDIFMACRO; a file after the mesh first includes
+    core/driver_setup.idp, the driver's set-up check), includes exactly the suite files its Needs
+    line names, at its top; core/driver_setup.idp skips every file that includes it; contact does
+    not reach into the body's rows; a driver that includes the prelude twice still runs;
+    docs/reserved_names.md lists the names include/ defines (scripts/reserved_names.py)."""
+    import glob as _glob
+    files = include_files()
     check(f"layout: {len(files)} include files found", len(files) >= 40, str(len(files)))
-    for path in files:
-        rel = os.path.relpath(path, os.path.join(ROOT, "include"))
-        text = open(path).read()
-        guard = "included" + "".join(p[:1].upper() + p[1:] for p in re.split(r"[\W_]", rel[:-4]))
+    setup_users = []
+    for rel in files:
+        text = open(os.path.join(ROOT, "include", rel)).read()
+        guard = guard_of(rel)
         code = [l for l in text.splitlines() if l.strip() and not l.startswith("//")]
         check(f"layout {rel}: states what it needs", "Needs:" in text)
+        if code[0] == 'include "core/driver_setup.idp"':
+            setup_users.append(rel)
+            code = code[1:]
         check(f"layout {rel}: guarded", code[:2] == [f"IFMACRO(!{guard})", f"macro {guard} 1 // EOM"]
               and code[-1] == "ENDIFMACRO", str(code[:2] + code[-1:]))
         includes = [i for i, l in enumerate(code) if l.startswith("include ")]
         # the registries include their members from a macro list at their top (laws, obstacles)
         body_start = next((i for i, l in enumerate(code[2:], 2) if not l.startswith(("include ", "load ", "macro ", "registered"))), len(code))
         check(f"layout {rel}: includes at the top", all(i < body_start for i in includes), str(includes))
+        setup, needed, _ = needs_of(text)
+        included = [re.match(r'include "([^"]+)"', code[i]).group(1) for i in includes]
+        included = [f for f in included if not f.startswith("laws/common") or rel != "laws/registry.idp"]
+        if rel not in ("laws/registry.idp", "prelude.idp", "model.idp"):
+            check(f"layout {rel}: includes what its Needs line names", sorted(set(needed)) == sorted(set(included)),
+                  f"Needs {sorted(set(needed))}, includes {sorted(set(included))}")
+        check(f"layout {rel}: a file needing the driver's set-up checks it first",
+              setup == (rel in setup_users) or rel == "core/driver_setup.idp", f"{setup}")
+    setup_text = open(os.path.join(ROOT, "include", "core", "driver_setup.idp")).read()
+    listed = set(re.findall(r"^macro (included\w+) 1 // EOM", setup_text, re.M)) - {"includedCoreDriverSetup"}
+    check("layout: core/driver_setup.idp skips exactly the files that include it",
+          listed == {guard_of(r) for r in setup_users}, str(listed ^ {guard_of(r) for r in setup_users}))
     for path in _glob.glob(os.path.join(ROOT, "include", "contact", "**", "*.idp"), recursive=True):
         text = open(path).read()
         check(f"layout {os.path.relpath(path, ROOT)}: no reference to the body's volumetric rows",
@@ -151,3 +198,28 @@ def test_include_layout():
     proc = subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "reserved_names.py")], stdout=subprocess.PIPE, text=True)
     check("layout: docs/reserved_names.md is current (scripts/reserved_names.py)",
           proc.returncode == 0 and proc.stdout == open(os.path.join(ROOT, "docs", "reserved_names.md")).read())
+
+
+def test_include_alone():
+    """Each include/ file, included alone after what its Needs line says a driver provides (the
+    driver's set-up: DRIVER_SETUP; a registry's member through its registry), parses and runs its
+    top level: its includes are its real contract, not model.idp's order (issue 41). Without the
+    set-up, a file after the mesh stops at once with one line, exit code 2."""
+    work = out("include alone")
+    os.makedirs(work, exist_ok=True)
+    for rel in include_files():
+        setup, _, registry = needs_of(open(os.path.join(ROOT, "include", rel)).read())
+        script = os.path.join(work, re.sub(r"\W", "_", rel) + ".edp")
+        open(script, "w").write((DRIVER_SETUP if setup else "") + f'include "{registry or rel}"\n'
+                                'cout << "alone ok" << endl;\n')
+        code, output, _ = run_driver(script, [], None)
+        check(f"alone {rel}: runs after {'the driver set-up' if setup else 'nothing'}",
+              code == 0 and "alone ok" in output, output.strip().splitlines()[-2:])
+    for rel in ("solve/sqp.idp", "model.idp"):
+        script = os.path.join(work, "without_" + re.sub(r"\W", "_", rel) + ".edp")
+        open(script, "w").write(f'include "prelude.idp"\ninclude "{rel}"\ncout << "not reached" << endl;\n')
+        code, output, _ = run_driver(script, [], None)
+        lines = [l for l in output.splitlines() if l.strip()]
+        check(f"alone {rel} without a dimension file: one error line, exit 2",
+              code == 2 and len(lines) == 1 and lines[0].startswith("error:") and "dimension file" in lines[0],
+              f"exit {code}: {lines[:3]}")
