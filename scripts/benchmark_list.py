@@ -39,6 +39,8 @@ BENCHMARKS = [
     ("indentation_3d", "benchmarks/indentation.edp", ["-dim", "3"]),
     ("cube_2d_mooney_platen", "benchmarks/cube.edp", ["-material", "mooney", "-load", "platen", "-compression", "0.35", "-steps", "4"]),
     ("cattaneo", "benchmarks/cattaneo.edp", []),
+    ("cattaneo_rigid", "benchmarks/cattaneo.edp", ["-setup", "rigid"]),
+    ("cattaneo_rigid_incompressible", "benchmarks/cattaneo.edp", ["-setup", "rigid", "-nu", "0.5"]),
     ("cattaneo_hold", "benchmarks/cattaneo.edp", ["-ratio", "0.99", "-hold", "50", "-h", "0.034"]),
     ("cattaneo_sliding", "benchmarks/cattaneo.edp", ["-travel", "0.15", "-steps", "3", "-h", "0.034"]),
     ("mindlin_sphere", "benchmarks/mindlin_sphere.edp", []),

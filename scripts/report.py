@@ -319,6 +319,11 @@ def fig_cattaneo(name, filename):
                             "Cattaneo's partial slip: two cylinders", ["E", "nu", "R", "pressure", "mu", "h"])
 
 
+def fig_cattaneo_rigid(name, filename):
+    return fig_partial_slip(name, filename, "x", "cattaneo_shear", "stick_half_width",
+                            "Cattaneo's partial slip: a rigid cylinder on a rubber block", ["E", "nu", "R", "pressure", "mu", "h", "block"])
+
+
 def fig_mindlin(name, filename):
     return fig_partial_slip(name, filename, "r", "mindlin_shear", "stick_radius",
                             "Mindlin's partial slip: two spheres (3D)", ["E", "nu", "R", "force", "mu", "h"])
@@ -615,16 +620,17 @@ def sections():
          "cross the block's facets, 0.5 % at h = R/40, 0.1 % at R/80.", [
             lambda: fig_sliding_disc("sliding_disc", "sliding_disc_forces.png")]),
         ("Coulomb friction: Cattaneo's and Mindlin's partial slip, exact stick, sliding",
-         ["cattaneo", "cattaneo_hold", "cattaneo_sliding", "mindlin_sphere", "mindlin_sphere_hold", "sliding_disc_friction", "oring_plates_friction",
+         ["cattaneo", "cattaneo_rigid", "cattaneo_rigid_incompressible", "cattaneo_hold", "cattaneo_sliding", "mindlin_sphere", "mindlin_sphere_hold", "sliding_disc_friction", "oring_plates_friction",
           "hertz_sphere_friction", "hertz_sphere_axisymmetric_friction"],
          "Friction over a load step is a dissipation sum g |slip| with one slack per contact row in the condensed "
          "reduced problem, no smoothing; Coulomb's bounds g = mu N come from the multipliers by a fixed point. Two "
          "identical cylinders pressed and then sheared (dolfinx_contact's set-up) meet Cattaneo's stick zone and "
-         "shear traction, two identical spheres Mindlin's stick radius and tangential displacement (3D); held at 0.99 mu P "
+         "shear traction, and so does a rigid cylinder on a nearly incompressible block (the stabilised nodal form), two identical spheres Mindlin's stick radius and tangential displacement (3D); held at 0.99 mu P "
          "for 50 steps the platen does not move (exact stick); driven past mu P "
          "every node slides with q = mu p. Coulomb's law is checked at every node of every step of every friction "
          "run (docs/benchmarks/friction.md).", [
             lambda: fig_cattaneo("cattaneo", "cattaneo_shear.png"),
+            lambda: fig_cattaneo_rigid("cattaneo_rigid", "cattaneo_rigid_shear.png"),
             lambda: fig_mindlin("mindlin_sphere", "mindlin_shear.png"),
             lambda: fig_oring_friction(["oring_plates", "oring_plates_friction"], "oring_friction_force.png")]),
         ("Dynamics: a bar and a sphere against a rigid wall, two bars, two discs and two spheres head on (implicit time steps)",

@@ -135,13 +135,27 @@ _add(["indentation_3d"], ["contact_radius_small_depth"],
 _add(["indentation_axi", "indentation_3d"], ["bottom_pull_rel"],
      Check("exact", 1e-8, "value", note="the bottom pushes on the plane at every node (u_z = 0 models the frictionless plane)"))
 
-_CATTANEO = ["cattaneo", "cattaneo_hold", "cattaneo_sliding"]
+_CATTANEO = ["cattaneo", "cattaneo_hold", "cattaneo_sliding", "cattaneo_rigid", "cattaneo_rigid_incompressible"]
 _add(["cattaneo"], ["stick_half_width"],
      Check("analytic", 2e-2, note="Cattaneo's c = a (1 - Q / mu P)^(1/2), fitted from mu p - q; measured 0.29 % at a/60"))
 _add(["cattaneo"], ["a"], Check("analytic", 1e-2, note="Hertz's line contact of the two cylinders (0.35 % at a/60)"))
 _add(["cattaneo"], ["shear_l2_rel_error"],
      Check("analytic", 3e-2, "value", note="L2 error of q against Cattaneo's traction: 3.5 % at a/30, 2.4 % at a/60, 0.75 % at a/120"))
-_add(["cattaneo", "cattaneo_hold"], ["tangential_force"], Check("exact", 1e-10, note="the applied Q (load control)"))
+_add(["cattaneo_rigid", "cattaneo_rigid_incompressible"], ["stick_half_width"],
+     Check("analytic", 3e-2, note="a rigid cylinder on a block at nu = 0.4999 (Dundurs' beta = 2e-4) or 0.5: Cattaneo's c; "
+                                  "measured 0.04 % and 0.05 % at a/60 (35 % for the nodal form with the cylinder's own "
+                                  "rows: docs/benchmarks/friction.md)"))
+_add(["cattaneo_rigid", "cattaneo_rigid_incompressible"], ["a"],
+     Check("analytic", 1e-2, note="Hertz's line contact on the block (0.04 % at a/60)"))
+_add(["cattaneo_rigid", "cattaneo_rigid_incompressible"], ["shear_l2_rel_error"],
+     Check("analytic", 5e-2, "value", note="L2 error of q against Cattaneo's traction: 5.0 %, 2.8 %, 2.1 % at a/30, a/60, a/120 "
+                                           "(nu = 0.4999); 5.1 %, 2.9 %, 2.4 % at nu = 0.5"))
+_add(["cattaneo", "cattaneo_hold", "cattaneo_sliding", "cattaneo_rigid", "cattaneo_rigid_incompressible"], ["normal_phase_shear"],
+     Check("info", note="the shear the normal load leaves, of p0 (none in Cattaneo's theory): the finite block's and the "
+                        "discretisation's, 2.1e-2 at a/60, 1.2e-2 at a/120 (docs/benchmarks/friction.md)"))
+_add(["cattaneo_rigid_incompressible"], ["volume_balance_rel_error"],
+     Check("balance", 1e-8, "value", note="the block's volume at nu = 0.5 (the stabilised form's constraint), of its volume"))
+_add(["cattaneo", "cattaneo_hold", "cattaneo_rigid", "cattaneo_rigid_incompressible"], ["tangential_force"], Check("exact", 1e-10, note="the applied Q (load control)"))
 _add(_CATTANEO, ["normal_force"], Check("exact", 1e-10, note="the applied P"))
 _add(["cattaneo_hold", "cattaneo_sliding"], ["a", "stick_half_width", "shear_l2_rel_error"],
      Check("info", note="the coarse mesh a/20 of the stick and sliding checks"))

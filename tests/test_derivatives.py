@@ -15,7 +15,9 @@ from helpers import *  # noqa: F401,F403 (check, out, run_driver, read_summary, 
 #     curvature, column by column (Mooney-Rivlin 2D and 3D, penalty and exact incompressibility,
 #     linear elasticity's nodal form, the axisymmetric energy in every form; measured 1e-10..2e-9,
 #     bound 1e-8); in plane strain the plugin's coupled tangent against the varf and FreeFEM's
-#     products to 1e-12
+#     products to 1e-12; the stabilised form's gradient and its saddle point matrix's Schur
+#     complement against differences of the gradient (2D, 3D, axisymmetric, linear; 4e-10..6e-9),
+#     and the 3D plugin's saddle with the stabilisation against the script's to 1e-12
 #   fd_pairs: the contact pairs' rows against finite differences of the gap
 #   fd_friction: the friction tangents orthogonal to the rows' gradients (1e-14), the friction force
 #     against central differences of the dissipation (h = 1e-6: measured 5e-12 in 2D, 2e-11 in 3D;
@@ -28,7 +30,7 @@ from helpers import *  # noqa: F401,F403 (check, out, run_driver, read_summary, 
 SCRIPTS = {
     "fd_laws": (lambda: 2 * len(registered_laws()) + 2, None),
     "fd_obstacles": (lambda: len(registered_obstacles()) + 2, "fd_obstacles obstacle="),
-    "fd_volumetric": (lambda: 27, "fd_volumetric case="),
+    "fd_volumetric": (lambda: 41, "fd_volumetric case="),
     "fd_pairs": (lambda: 12, None),
     "fd_friction": (lambda: 6, None),
     "fd_inertia": (lambda: 6, "fd_inertia law="),
