@@ -38,36 +38,41 @@ def test_no_shell():
 
 
 def test_hostile_outputs_list():
-    """The clean-up removes what .outputs names only when it is a regular file or a link of that
-    name in the output folder: option-like names, '..', paths and folders are left alone, and a
-    list of any length is worked through (5000 names: the old 'sh -c' silently did nothing)."""
+    """The clean-up removes what .outputs records only when it is a regular file of that name in the
+    output folder whose identity is the one recorded: option-like names, '..', paths, folders, names
+    without an identity (as lists held before issue 42) and records of files outside are left alone,
+    and a list of any length is worked through (5000 records: the old 'sh -c' silently did nothing)."""
     o = out("hostile outputs")
+    run_driver("benchmarks/cube.edp", ["-n", "2"], o)
     os.makedirs(os.path.join(o, "userdir"))
     open(os.path.join(o, "userdir", "keep.txt"), "w").write("the user's\n")
+    open(os.path.join(o, "notes.txt"), "w").write("the user's\n")
     victim = out("hostile outputs victim.txt")
     open(victim, "w").write("outside\n")
-    open(os.path.join(o, ".outputs"), "w").write("-rf\n--help\nuserdir\n..\n.\n../" + os.path.basename(victim)
-                                                 + "\n" + victim + "\n/etc/hostname\n")
-    stale_summary(o)
+    with open(os.path.join(o, ".outputs"), "a") as f:
+        f.write("-rf\n--help\nuserdir\nnotes.txt\n..\n.\n../" + os.path.basename(victim) + "\n" + victim + "\n/etc/hostname\n"
+                + output_record(os.path.join(o, "userdir")) + output_record(victim, "../" + os.path.basename(victim))
+                + output_record(victim, victim) + output_record(os.path.join(o, ".outputs")))
     code, output, _ = run_driver("benchmarks/cube.edp", ["-maxiter", "1"], o)
     s = read_summary(o)
     check("hostile .outputs: the run goes on (exit 3 of its own failure) and leaves its own incomplete summary",
-          code == 3 and s is not None and not s["complete"] and "stale" not in s, f"exit {code}")
-    check("hostile .outputs: userdir, its file, the file outside and /etc/hostname are all still there",
+          code == 3 and s is not None and not s["complete"], f"exit {code}; {error_lines(output)}")
+    check("hostile .outputs: userdir, its file, notes.txt, the file outside and /etc/hostname are all still there",
           os.path.isfile(os.path.join(o, "userdir", "keep.txt")) and os.path.isfile(victim)
-          and os.path.exists("/etc/hostname"))
+          and os.path.isfile(os.path.join(o, "notes.txt")) and os.path.exists("/etc/hostname"))
     big = out("long outputs list")
-    os.makedirs(big)
+    run_driver("benchmarks/cube.edp", ["-n", "2"], big)
     names = [f"old_step{i:05d}.log" for i in range(5000)]
     for name in names:
         open(os.path.join(big, name), "w").close()
-    open(os.path.join(big, ".outputs"), "w").write("".join(n + "\n" for n in names))
-    stale_summary(big)
+    records = subprocess.run(["stat", "-c", "%d %i %.9W %n"] + names, cwd=big, stdout=subprocess.PIPE, text=True).stdout
+    with open(os.path.join(big, ".outputs"), "a") as f:
+        f.write(records)
     code, _, _ = run_driver("benchmarks/cube.edp", ["-maxiter", "1"], big)
     left = [n for n in os.listdir(big) if n.startswith("old_step")]
     s = read_summary(big)
-    check("5000 listed outputs: all removed, the old complete summary replaced by this run's",
-          not left and s is not None and "stale" not in s and not s["complete"], f"{len(left)} left, exit {code}")
+    check("5000 recorded outputs: all removed, the earlier complete summary replaced by this run's",
+          len(records.splitlines()) == 5000 and not left and s is not None and not s["complete"], f"{len(left)} left, exit {code}")
 
 
 def test_planted_files():
@@ -250,3 +255,168 @@ def test_sweep_smoke():
     summary_line = [l for l in proc.stdout.splitlines() if l.startswith("sweep:")]
     check("sweep smoke: 6 cases, no failed run, no violated check",
           proc.returncode == 0 and summary_line and "0 failed runs, 0 check violations" in summary_line[0], str(summary_line))
+
+
+# Issue 42, files lost or overwritten: a file counts as the suite's only by the identity recorded in
+# .outputs when the run created it (plugin/files.cpp); every output is created fresh and renamed in.
+
+def output_record(path, name=None):
+    """A line of .outputs for the file at path, as plugin/files.cpp writes it: device, inode, birth
+    time, name (GNU stat's %d %i %.9W)."""
+    ident = subprocess.run(["stat", "-c", "%d %i %.9W", path], stdout=subprocess.PIPE, text=True).stdout.strip()
+    return f"{ident} {name or os.path.basename(path)}\n"
+
+
+def test_input_in_output_folder():
+    """Issue 42, probe 1: the mesh a run wrote, given back to a run into the same folder as -mesh, is
+    read, not removed by the clean-up first (it exited 2, 'file not found'); a later run without -mesh
+    still removes it as the suite's own."""
+    o = out("input in output folder")
+    code, _, _ = run_driver("benchmarks/hertz_sphere.edp", ["-h", "0.02", "-zone", "0.2", "-hmax", "0.3"], o)
+    mesh = os.path.join(o, "quarter_hemisphere.msh")
+    before = open(mesh).read() if os.path.exists(mesh) else None
+    code, output, _ = run_driver("benchmarks/hertz_sphere.edp", ["-mesh", mesh], o)
+    check("input in the output folder: the run with -mesh <out>/quarter_hemisphere.msh exits 0",
+          before and code == 0 and read_summary(o)["complete"], f"exit {code}; {error_lines(output)}")
+    check("input in the output folder: the mesh is still there, unchanged", os.path.exists(mesh) and open(mesh).read() == before)
+    identity = output_record(mesh)
+    code, _, _ = run_driver("benchmarks/hertz_sphere.edp", ["-h", "0.02", "-zone", "0.2", "-hmax", "0.3"], o)
+    check("input in the output folder: still the suite's, removed and written anew by a run that meshes",
+          code == 0 and os.path.exists(mesh) and output_record(mesh) != identity, f"exit {code}")
+
+
+def test_links_not_written_through():
+    """Issue 42, probe 2: a hard link planted at an output's name (pressure.csv, ipopt.opt, the IPOPT
+    log, the .vtu, summary.json; gmsh.log and the mesh of a gmsh run) is replaced, not written
+    through: the file outside keeps its content (it received the output before)."""
+    for driver, args, names in (("benchmarks/hertz_plane.edp", ["-condense", "no"],
+                                 ["pressure.csv", "ipopt.opt", "ipopt_step00001.log", "hertz_plane.vtu", "summary.json"]),
+                                ("benchmarks/hertz_sphere.edp", ["-h", "0.02", "-zone", "0.2", "-hmax", "0.3"],
+                                 ["gmsh.log", "quarter_hemisphere.msh"])):
+        o = out(f"hard links {os.path.basename(driver)}")
+        os.makedirs(o)
+        victims = []
+        for name in names:
+            victim = out(f"outside {os.path.basename(driver)} {name}")
+            open(victim, "w").write("precious\n")
+            os.link(victim, os.path.join(o, name))
+            victims.append(victim)
+        code, output, _ = run_driver(driver, args, o)
+        check(f"hard links, {os.path.basename(driver)}: exit 0, and every file outside still holds its own text",
+              code == 0 and all(open(v).read() == "precious\n" for v in victims), f"exit {code}; {error_lines(output)}")
+        check(f"hard links, {os.path.basename(driver)}: each output is now a file of its own",
+              all(os.stat(os.path.join(o, n)).st_nlink == 1 for n in names))
+
+
+def test_user_file_at_output_name():
+    """Issue 42, probe 3: a file of the user's under an output's name is left alone: the run refuses
+    the folder (exit 2, one error line naming the file and -out, nothing written); it was
+    overwritten."""
+    o = out("user file at output name")
+    os.makedirs(o)
+    open(os.path.join(o, "pressure.csv"), "w").write("notes\n")
+    code, output, _ = run_driver("benchmarks/hertz_plane.edp", [], o)
+    errors = error_lines(output)
+    check("user file pressure.csv: exit 2, one error line naming it and -out, the file unchanged, no summary.json",
+          code == 2 and len(errors) == 1 and "pressure.csv" in errors[0] and "-out" in errors[0]
+          and open(os.path.join(o, "pressure.csv")).read() == "notes\n" and read_summary(o) is None,
+          f"exit {code}; {errors}")
+    # the same file written after a run's, once that run's file was deleted: a new file (ext4 gives it
+    # the old inode number at once), not the suite's
+    run_driver("benchmarks/cube.edp", ["-n", "2"], o + "2")
+    os.remove(os.path.join(o + "2", "cube.vtu"))
+    open(os.path.join(o + "2", "cube.vtu"), "w").write("notes\n")
+    code, output, _ = run_driver("benchmarks/cube.edp", ["-n", "2"], o + "2")
+    check("user file made after the suite's of that name was deleted: left alone (exit 2)",
+          code == 2 and open(os.path.join(o + "2", "cube.vtu")).read() == "notes\n", f"exit {code}; {error_lines(output)}")
+
+
+def test_mpi_writes_nothing_elsewhere():
+    """Issue 42, probe 4: under MPI the other processes' IPOPT wrote ipopt.out in the working folder
+    (truncating a link of that name): now nothing is created there and the link's target is intact."""
+    work = out("mpi workdir")
+    os.makedirs(work)
+    with open(os.path.join(work, "freefem++.pref"), "w") as f:
+        f.write(f'loadpath += "/usr/lib/freefem++"\nloadpath += "{ROOT}/plugin"\nincludepath += "{ROOT}/include"\n'
+                'load += "headless"\nverbosity = 0\n')
+    victim = out("mpi victim.txt")
+    open(victim, "w").write("precious\n")
+    os.symlink(victim, os.path.join(work, "ipopt.out"))
+    code, output, _ = run_driver(os.path.join(ROOT, "benchmarks/hertz_plane.edp"), [], os.path.join(work, "o"), cwd=work,
+                                 processes=2)
+    check("mpi: exit 0, the link ipopt.out's target untouched", code == 0 and open(victim).read() == "precious\n",
+          f"exit {code}; {error_lines(output)}")
+    os.remove(os.path.join(work, "ipopt.out"))
+    code, _, _ = run_driver(os.path.join(ROOT, "benchmarks/hertz_plane.edp"), [], os.path.join(work, "o"), cwd=work,
+                            processes=2)
+    check("mpi: no ipopt.out (or any other file) created in the working folder",
+          code == 0 and sorted(os.listdir(work)) == ["freefem++.pref", "o"], str(sorted(os.listdir(work))))
+
+
+def test_lock_and_list_safe():
+    """Issue 42, probe 5: a crafted .outputs listing .lock (with its identity) leaves the lock alone,
+    so a second run during the first is still refused; a killed run's empty .write_probe is removed by
+    the next run (it blocked the folder for good); .outputs as a FIFO or a link to /dev/zero is
+    refused at once (both hung)."""
+    o = out("lock listed")
+    os.makedirs(o)
+    open(os.path.join(o, ".lock"), "w").close()
+    open(os.path.join(o, ".outputs"), "w").write(output_record(os.path.join(o, ".lock")) + ".lock\n")
+    lock_inode = os.stat(os.path.join(o, ".lock")).st_ino
+    first = subprocess.Popen(["FreeFem++", "-nw", "benchmarks/sliding_disc.edp", "-out", o], cwd=ROOT,
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    # until the first run holds the lock and has cleaned the folder (its curve file exists)
+    while first.poll() is None and not os.path.exists(os.path.join(o, "force_slide.csv")):
+        time.sleep(0.01)
+    code, output, _ = run_driver("benchmarks/sliding_disc.edp", [], o)
+    running = first.poll() is None   # (the first run is not needed further: ended here)
+    first.kill()
+    first.wait()
+    check("lock listed in .outputs: the lock is kept, and a second run during the first is refused (exit 2, in use)",
+          running and os.stat(os.path.join(o, ".lock")).st_ino == lock_inode and code == 2 and "in use" in output,
+          f"first running {running}, exit {code}; {error_lines(output)}")
+    probe = out("stale probe")
+    os.makedirs(probe)
+    open(os.path.join(probe, ".write_probe"), "w").close()
+    code, _, _ = run_driver("benchmarks/cube.edp", ["-n", "2"], probe)
+    check("a killed run's empty .write_probe: removed, the run completes", code == 0
+          and not os.path.exists(os.path.join(probe, ".write_probe")), f"exit {code}")
+    for label, make in (("a FIFO", lambda p: os.mkfifo(p)), ("a link to /dev/zero", lambda p: os.symlink("/dev/zero", p))):
+        d = out(f"outputs {label}")
+        os.makedirs(d)
+        make(os.path.join(d, ".outputs"))
+        try:
+            code, output, _ = run_driver("benchmarks/cube.edp", ["-n", "2"], d, timeout=120)
+        except subprocess.TimeoutExpired:
+            code, output = "timeout", ""
+        errors = error_lines(output)
+        check(f".outputs {label}: refused at once (exit 2, one error line naming .outputs), left in place",
+              code == 2 and len(errors) == 1 and ".outputs" in errors[0] and os.path.lexists(os.path.join(d, ".outputs")),
+              f"exit {code}; {errors}")
+
+
+def test_gmsh_dies_with_its_run():
+    """Issue 42, probe 11: gmsh runs in a process group of its own without the lock's descriptor and
+    dies with the run: a run killed while meshing leaves no gmsh writing, and the next run into the
+    folder is not refused as 'in use'."""
+    o = out("killed while meshing")
+    proc = subprocess.Popen(["FreeFem++", "-nw", "benchmarks/hertz_sphere.edp", "-h", "0.004", "-out", o], cwd=ROOT,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    gmsh = None
+    while proc.poll() is None and gmsh is None:   # until the run has started gmsh
+        children = open(f"/proc/{proc.pid}/task/{proc.pid}/children").read().split()
+        gmsh = next((int(c) for c in children if open(f"/proc/{c}/comm").read().strip() == "gmsh"), None)
+        time.sleep(0.01)
+    group = os.getpgid(gmsh) if gmsh else None
+    inherited = [os.readlink(f"/proc/{gmsh}/fd/{fd}") for fd in os.listdir(f"/proc/{gmsh}/fd")] if gmsh else []
+    proc.kill()
+    proc.wait()
+    while gmsh and os.path.exists(f"/proc/{gmsh}") and open(f"/proc/{gmsh}/stat").read().split()[2] != "Z":
+        time.sleep(0.01)   # until gmsh is gone (a zombie of init's until reaped)
+    check("killed while meshing: gmsh ran in a group of its own, without the folder's .lock open",
+          gmsh and group == gmsh and not any(f.endswith("/.lock") for f in inherited), f"gmsh {gmsh}, group {group}, {inherited}")
+    mesh = os.path.join(o, "quarter_hemisphere.msh")
+    size = os.path.getsize(mesh) if os.path.exists(mesh) else 0
+    code, output, _ = run_driver("benchmarks/cube.edp", ["-n", "2"], o)
+    check("killed while meshing: gmsh ended with the run (no mesh written after), the next run into the folder exits 0",
+          size == 0 and code == 0, f"mesh {size} bytes, exit {code}; {error_lines(output)}")
