@@ -230,6 +230,15 @@ CASES = [
     (PLANE, ["-mesh", "{tmp}/clockwise.msh"], "clockwise"),
     (SPHERE, ["-mesh", "{tmp}/inverted_tet.msh"], "inverted"),
     (PLANE, ["-mesh", "{tmp}/thousandfold.msh"], "factor 2"),
+    # issue 42: messages name the parameter the user gave, quote its value as typed and shortened
+    (BARS, ["-n", "-5"], "-n"),
+    (INDENTATION, ["-depth", "1e-9"], "-depth"),
+    (SPHERES, ["-R1", "1e-30"], "-R1"),
+    (CUBE, ["-nu", "0.5000001", "-volumetric", "nodal"], "0.5000001"),
+    (CUBE, ["-nu", "0.4999999999"], "-nu"),
+    (CUBE, ["-material", "x" * 5000], "(5000 characters)"),
+    (CIRCLE, ["-splinefile", "{tmp}/a_folder"], "-splinefile"),
+    (BAR, ["-dt", "1e-12"], "-dt"),
 ]
 
 

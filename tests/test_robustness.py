@@ -493,3 +493,28 @@ def test_make_variables_not_commands():
               and (expected is None or proc.returncode == expected), f"exit {proc.returncode}: {proc.stdout.strip()[-200:]}")
     check("make workspace: the folders are named as given", os.path.isfile(os.path.join(base, "y\"; touch " + base, "M; echo \"",
                                                                                    "my_problem.edp")), str(os.listdir(base)))
+
+
+# Issue 42, messages: they name the parameter the user gave, quote its value as typed and shortened,
+# and suggest only what the driver takes (the cases of tests/bad_inputs.py check the names).
+
+def test_messages_suggest_what_the_driver_takes():
+    """Issue 42, probe 14: drivers without -volumetric suggested '-volumetric nodal' for -nu 0.5, and
+    rejected it when given; a 5,000-character value was echoed whole; README said every driver with
+    contact takes -mu, which cube.edp and bar_impact.edp reject."""
+    tmp = out("messages")
+    for driver in ("benchmarks/sliding_disc.edp", "benchmarks/hertz_two_spheres.edp", "benchmarks/bar_impact.edp"):
+        code, output, _ = run_driver(driver, ["-nu", "0.5"], tmp)
+        errors = error_lines(output)
+        check(f"{os.path.basename(driver)} -nu 0.5: exit 2, one line naming -nu, no suggestion of -volumetric",
+              code == 2 and len(errors) == 1 and "-nu" in errors[0] and "-volumetric" not in errors[0], str(errors))
+    code, output, _ = run_driver("benchmarks/cube.edp", ["-material", "x" * 5000], tmp)
+    check("a 5,000-character value: one error line of less than 300 characters", code == 2 and len(output.splitlines()) == 1
+          and len(output) < 300, f"{len(output)} characters")
+    readme = " ".join(open(os.path.join(ROOT, "README.md")).read().split())
+    sentence = readme[readme.index("takes `-mu`") - 120:readme.index("takes `-mu`")]
+    for driver in ("cube.edp", "bar_impact.edp"):
+        code, output, _ = run_driver(f"benchmarks/{driver}", ["-mu", "0.3"], tmp)
+        check(f"{driver} refuses -mu, and the README says it does not take it", code == 2
+              and "unknown parameter -mu" in output and (driver in sentence or "time drivers are frictionless" in readme),
+              sentence)
