@@ -3,8 +3,8 @@
 # first. Benchmarks run in parallel, one per core (JOBS=1 for one at a time).
 .PHONY: run report table test convergence sweep bench deps clean workspace
 # The variables a user sets (make K=hertz, DIR=..., N=..., JOBS=..., PEERS=1) reach the recipes as
-# environment variables, quoted by the shell ("$$K"), never as command text: make pastes $(K) into the
-# line it hands the shell, where K='zz; touch M #' ran touch.
+# environment variables, quoted by the shell ("$$K"), never as command text: make pastes $(K) into
+# the line it hands the shell, where K='zz; touch M #' ran touch.
 export K DIR N JOBS PEERS
 # Debian's interpreter, where the deps script installs matplotlib (a pyenv shim may shadow it)
 PYTHON := $(shell test -x /usr/bin/python3 && echo /usr/bin/python3 || echo python3)

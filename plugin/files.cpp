@@ -18,28 +18,31 @@
 //   fileEndsWith(path, text): 1 when the file's last bytes are text (trailing white space ignored): how
 //     a file written by a writer that reports no error (FreeFEM's savevtk) is known to be whole.
 //   makeFolder(path): creates the folder and its missing parents (mkdir -p); 0, or the errno.
-//   lockFolder(folder): an exclusive lock on folder/.lock (flock), held until the process ends, on a
-//     descriptor closed on exec (a child such as gmsh does not keep the folder locked): 0, 1 when
+//   lockFolder(folder): an exclusive lock on folder/.lock (flock), held until the process ends, on
+//     a descriptor closed on exec (a child such as gmsh does not keep the folder locked): 0, 1 when
 //     another process holds it, ENXIO when .lock is not a regular file, or the errno. The folder is
 //     then the run's output folder: the only one the functions below create files in.
-//   writeProbe(folder): creates and removes folder/.write_probe (after lockFolder: an empty one left
-//     by a killed run is removed first); 0, EEXIST when something else has that name, or the errno.
-//   cleanOutputs(folder): removes the files recorded in folder/.outputs ("dev ino birth name" lines)
-//     whose identity still matches (and their temporary names), except the run's inputs, whose
-//     records are kept; then starts a new .outputs. Returns how many it removed; -1 when .outputs
-//     cannot be read, -2 when it is not a regular file (a link, a FIFO, a device, a folder), -3 when it
-//     is larger than any list the suite writes, -4 when the new one cannot be created.
+//   writeProbe(folder): creates and removes folder/.write_probe (after lockFolder: an empty one
+//     left by a killed run is removed first); 0, EEXIST when something else has that name, or the
+//     errno.
+//   cleanOutputs(folder): removes the files recorded in folder/.outputs ("dev ino birth name"
+//     lines) whose identity still matches (and their temporary names), except the run's inputs,
+//     whose records are kept; then starts a new .outputs. Returns how many it removed; -1 when
+//     .outputs cannot be read, -2 when it is not a regular file (a link, a FIFO, a device, a
+//     folder), -3 when it is larger than any list the suite writes, -4 when the new one cannot be
+//     created.
 //   outputObstacle(folder, names, patterns): the first entry of the folder, among the exact names
 //     and the glob patterns given (one a line), that a run could not replace: "name\tfile" (a file
 //     the suite did not write), "name\tfolder" or "name\tspecial" (a FIFO, device or socket); ""
 //     when there is none. Links (symbolic or hard) are replaced when written, inputs never are.
 //   claimOutput(path): makes path, a plain name in the output folder, hold an empty file of this
-//     run's (created fresh and recorded, or this run's own already): 0; EEXIST when a file the suite
-//     did not write is there, EISDIR a folder, ENXIO a special file, EBUSY one of the run's inputs,
-//     EXDEV a path outside the output folder; or the errno.
+//     run's (created fresh and recorded, or this run's own already): 0; EEXIST when a file the
+//     suite did not write is there, EISDIR a folder, ENXIO a special file, EBUSY one of the run's
+//     inputs, EXDEV a path outside the output folder; or the errno.
 //   writeTextFile(path, text), appendTextFile(path, text): text into the output (claimed first),
 //     replacing its content or at its end, each step checked (open, identity, write, close; fsync
-//     for a whole file): 0, or the errno (ENOSPC on a full disk). FreeFEM's ofstream reports no error.
+//     for a whole file): 0, or the errno (ENOSPC on a full disk). FreeFEM's ofstream reports no
+//     error.
 //   replaceTextFile(path, text): text into a fresh file, synced, then renamed over path: the output
 //     is whole or absent (summary.json). 0, or the claim's codes or the errno.
 //   completeLines(path): the number of lines of a text file that ends with a newline (every file the
@@ -51,8 +54,8 @@
 //     in a process group of its own, killed if this process dies (PR_SET_PDEATHSIG); returns its
 //     exit status, 127 when it could not be started, 128 + n when signal n ended it.
 //   inputProblem(path): why a file given as input (-mesh, -splinefile) cannot be read ("" when it
-//     can): missing, a folder, a FIFO, device or socket (which would block or never end), unreadable.
-//     A readable one is recorded as an input: never removed nor written by the run.
+//     can): missing, a folder, a FIFO, device or socket (which would block or never end),
+//     unreadable. A readable one is recorded as an input: never removed nor written by the run.
 //   errorText(code): strerror(code).
 //   pathProblem(path): why a path given on the command line is refused ("" when it is not): empty, a
 //     control character, a quote or a backslash, a leading '-'. Such names are more likely a mistake
@@ -325,7 +328,8 @@ long cleanOutputs(string *const &folder) {
     }
   }
   if (present && unlink(list.c_str()) != 0 && errno != ENOENT) { lastListError = errno; return -4; }
-  int fd = open(list.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_APPEND | O_CLOEXEC, 0644);
+  int flags = O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_APPEND | O_CLOEXEC;
+  int fd = open(list.c_str(), flags, 0644);
   if (fd < 0) { lastListError = errno; return -4; }
   if (long error = writeAll(fd, kept)) { lastListError = error; close(fd); return -4; }
   if (outputList >= 0) close(outputList);
@@ -403,7 +407,8 @@ long claimOutput(string *const &path) {
 long writeText(const std::string &path, const std::string &text, bool append) {
   if (!writesHere()) return 0;
   if (long error = claim(path)) return error;
-  int fd = open(path.c_str(), O_WRONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC | (append ? O_APPEND : 0));
+  int flags = O_WRONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC | (append ? O_APPEND : 0);
+  int fd = open(path.c_str(), flags);
   if (fd < 0) return errno;
   Identity id;
   unsigned mode, links;
@@ -418,8 +423,12 @@ long writeText(const std::string &path, const std::string &text, bool append) {
   if (close(fd) != 0 && !error) error = errno;
   return error;
 }
-long writeTextFile(string *const &path, string *const &text) { return writeText(*path, *text, false); }
-long appendTextFile(string *const &path, string *const &text) { return writeText(*path, *text, true); }
+long writeTextFile(string *const &path, string *const &text) {
+  return writeText(*path, *text, false);
+}
+long appendTextFile(string *const &path, string *const &text) {
+  return writeText(*path, *text, true);
+}
 
 long replaceTextFile(string *const &path, string *const &text) {
   if (!writesHere()) return 0;
@@ -430,7 +439,8 @@ long replaceTextFile(string *const &path, string *const &text) {
   return createFresh(*path, name, *text, true);
 }
 
-string *outputObstacle(Stack s, string *const &folder, string *const &names, string *const &patterns) {
+string *outputObstacle(Stack s, string *const &folder, string *const &names,
+                       string *const &patterns) {
   std::string found;
   DIR *dir = writesHere() ? opendir(folder->c_str()) : nullptr;
   while (dir && found.empty()) {
@@ -593,7 +603,8 @@ void init() {
   Global.Add("writeProbe", "(", new OneOperator1_<long, string *>(writeProbe));
   Global.Add("cleanOutputs", "(", new OneOperator1_<long, string *>(cleanOutputs));
   Global.Add("listError", "(", new OneOperator0<long>(listError));
-  Global.Add("outputObstacle", "(", new OneOperator3s_<string *, string *, string *, string *>(outputObstacle));
+  Global.Add("outputObstacle", "(",
+             new OneOperator3s_<string *, string *, string *, string *>(outputObstacle));
   Global.Add("claimOutput", "(", new OneOperator1_<long, string *>(claimOutput));
   Global.Add("writeTextFile", "(", new OneOperator2_<long, string *, string *>(writeTextFile));
   Global.Add("appendTextFile", "(", new OneOperator2_<long, string *, string *>(appendTextFile));

@@ -17,9 +17,9 @@
 // the file's vertices as they are. Prints one line when it splits. A file it cannot read ends
 // the run with "error: ..." and exit code 2 (the suite's bad-input code).
 //
-// mshProblem(file, dim, size): why an ASCII msh 2.2 file given by a user (-mesh) cannot be used as a
-// mesh of dimension dim for a body of the given size, or "" when it can, before FreeFEM's readers see
-// it (gmshload ends in an assertion or reads out of bounds on a corrupt file): the format, the
+// mshProblem(file, dim, size): why an ASCII msh 2.2 file given by a user (-mesh) cannot be used as
+// a mesh of dimension dim for a body of the given size, or "" when it can, before FreeFEM's readers
+// see it (gmshload ends in an assertion or reads out of bounds on a corrupt file): the format, the
 // sections and their counts, finite coordinates, no repeated node number, every element's nodes
 // present, only point, line, triangle (and in 3D tetrahedron) elements, at least one element of the
 // dimension and one of its boundary, no element of the dimension with a zero area or volume (below
@@ -295,8 +295,10 @@ std::string mshCheck(const std::string &file, long dim, double bodySize) {
       if (!(std::fabs(measure) > 1e-12 * std::pow(size, double(dim))))
         refuse(file, element + " is degenerate (" + (dim == 3 ? "zero volume" : "zero area") + ")");
       if (measure < 0)
-        refuse(file, element + (dim == 3 ? " is inverted (negative volume: its nodes in the wrong order)"
-                                         : " is clockwise (negative area): FreeFEM takes counter-clockwise triangles"));
+        refuse(file, element + (dim == 3
+                                ? " is inverted (negative volume: its nodes in the wrong order)"
+                                : " is clockwise (negative area): FreeFEM takes counter-clockwise"
+                                  " triangles"));
     }
   }
   if (!in.section("EndElements")) refuse(file, "the $Elements section is cut short (no $EndElements)");
@@ -304,8 +306,8 @@ std::string mshCheck(const std::string &file, long dim, double bodySize) {
   if (boundaries == 0) refuse(file, dim == 3 ? "no boundary triangles" : "no boundary lines");
   if (bodySize > 0 && !(size >= bodySize / 2 && size <= 2 * bodySize)) {
     char text[160];
-    snprintf(text, sizeof text, "its bounding box's largest side, %g, is not within a factor 2 of the body's size %g "
-             "(other units?)", size, bodySize);
+    snprintf(text, sizeof text, "its bounding box's largest side, %g, is not within a factor 2 of "
+             "the body's size %g (other units?)", size, bodySize);
     refuse(file, text);
   }
   return "";

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # `make workspace DIR=<folder>`: a folder of your own for your own problem, outside the suite. The
-# folder is the argument, or DIR from the environment (make exports it: never pasted into a command).
+# folder is the argument, or DIR from the environment (make exports it, never pastes it into a
+# command).
 # Copies the template driver docs/template/my_problem.edp there (unless the folder has one) and
 # writes <folder>/freefem++.pref, the one setting that lets FreeFem++, started in that folder,
 # find the suite: its include/ folder, its plugins (plugin/*.so) and Debian's
@@ -19,5 +20,6 @@ includepath += "$root/include"
 load += "headless"
 verbosity = 0
 PREF
-printf 'workspace %s: my_problem.edp and freefem++.pref (the suite: %s)\n' "$(cd -- "$dir" && pwd)" "$root"
+printf 'workspace %s: my_problem.edp and freefem++.pref (the suite: %s)\n' \
+  "$(cd -- "$dir" && pwd)" "$root"
 printf 'run it there: cd %q && FreeFem++ -nw my_problem.edp\n' "$dir"   # (quoted: safe to paste)

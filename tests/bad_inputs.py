@@ -206,8 +206,8 @@ CASES = [
     (SPHERE, ["-mesh", "{tmp}/flat_tet.msh"], "degenerate"),
     (PLANE, ["-mesh", "{tmp}/square.msh", "-h", "0.01"], "-h"),
     (SPHERE, ["-mesh", "{tmp}/flat_tet.msh", "-zone", "0.1"], "-zone"),
-    # issue 42: a -tol loose enough that the contact set spreads with every check passing, a floor the
-    # mesh cannot resolve, more load steps than a run takes (their records were cut at 1000)
+    # issue 42: a -tol loose enough that the contact set spreads with every check passing, a floor
+    # the mesh cannot resolve, more load steps than a run takes (their records were cut at 1000)
     (PLANE, ["-tol", "1e-3", "-condense", "no"], "-tol"),
     (PLATEN, ["-waves", "1000000"], "-waves"),
     (PLATEN, ["-splinepoints", "20"], "-splinepoints"),
@@ -262,8 +262,9 @@ def make_files(tmp):
     with open(os.path.join(tmp, "flat_tet.msh"), "w") as f:   # four nodes in one plane
         f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 1 1 0\n$EndNodes\n"
                 "$Elements\n2\n1 2 2 1 1 1 2 3\n2 4 2 1 1 1 2 3 4\n$EndElements\n")
-    # issue 42: clockwise triangles (FreeFEM's "Assertion fail: (area > 0)"), an inverted tetrahedron
-    # and a mesh 1000 times too large (both reached the solver, exit 3)
+    # issue 42: clockwise triangles (FreeFEM's "Assertion fail: (area > 0)"), an inverted
+    # tetrahedron (FreeFEM's "Error of mesh orientation") and a mesh 1000 times too large (it
+    # reached the solver, exit 3)
     with open(os.path.join(tmp, "clockwise.msh"), "w") as f:
         f.write(square.format(x4="0", t2="4", count=6, lines=lines.format(e6="1"))
                 .replace("1 2 2 1 1 1 2 3\n2 2 2 1 1 1 3 4", "1 2 2 1 1 1 3 2\n2 2 2 1 1 1 4 3"))
@@ -271,8 +272,9 @@ def make_files(tmp):
         f.write(square.format(x4="0", t2="4", count=6, lines=lines.format(e6="1"))
                 .replace("2 1 0 0\n3 1 1 0\n4 0 1 0", "2 1000 0 0\n3 1000 1000 0\n4 0 1000 0"))
     with open(os.path.join(tmp, "inverted_tet.msh"), "w") as f:
-        f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n$EndNodes\n"
-                "$Elements\n2\n1 2 2 1 1 1 2 3\n2 4 2 1 1 1 3 2 4\n$EndElements\n")
+        f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n"
+                "4 0 0 1\n$EndNodes\n$Elements\n2\n1 2 2 1 1 1 2 3\n2 4 2 1 1 1 3 2 4\n"
+                "$EndElements\n")
     os.makedirs(os.path.join(tmp, "a_folder"), exist_ok=True)
     with open(os.path.join(tmp, "decreasing.txt"), "w") as f:
         f.write("0 0\n0.1 -0.01\n0.05 -0.002\n0.2 -0.03\n0.3 -0.04\n")
