@@ -2,13 +2,15 @@
 # results/report.html); `make test` runs the test suite. Both install missing dependencies
 # first. Benchmarks run in parallel, one per core (JOBS=1 for one at a time).
 .PHONY: run report table test convergence sweep bench deps clean workspace
-# The variables a user sets (make K=hertz, DIR=..., N=..., JOBS=..., PEERS=1) reach the recipes as
-# environment variables, quoted by the shell ("$$K"), never as command text: make pastes $(K) into
-# the line it hands the shell, where K='zz; touch M #' ran touch.
-export K DIR N JOBS PEERS
 # Debian's interpreter, where the deps script installs matplotlib (a pyenv shim may shadow it)
 PYTHON := $(shell test -x /usr/bin/python3 && echo /usr/bin/python3 || echo python3)
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+N ?= 200
+# The variables a user sets (make K=hertz, DIR=..., N=..., JOBS=..., PEERS=1) reach the recipes as
+# environment variables, quoted by the shell ("$$K"), never as command text: make pastes $(K) into
+# the line it hands the shell, where K='zz; touch M #' ran touch. (After the defaults: an export
+# before them defined the names empty, and ?= then kept them so.)
+export K DIR N JOBS PEERS
 NAMES = $(shell $(PYTHON) scripts/run_benchmarks.py --names)
 
 run: deps
@@ -48,7 +50,6 @@ bench: deps
 	$(PYTHON) scripts/performance/scaling.py
 
 # randomized parameter sets, checked for what must always hold (fixed seed; N=200 by default)
-N ?= 200
 sweep: deps
 	$(PYTHON) scripts/sweep.py "--n=$$N"
 

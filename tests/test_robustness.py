@@ -452,22 +452,25 @@ def test_make_variables_not_commands():
     """Issue 42, probe 10: make's user variables reach the recipes as environment variables, never
     as command text: `make workspace DIR='x`touch M`'`, `DIR='x"; touch M; echo "'`, `make test
     K='zz; touch M #'` and `make sweep N='1; touch M'` ran the embedded touch. Now the folders are
-    made with those names and nothing runs (no file M anywhere)."""
+    made with those names and nothing runs (no file M anywhere); the values reach pytest and the
+    sweep whole, as one argument each (their own refusals quote them)."""
     base = out("make variables")
     os.makedirs(base)
     canary = os.path.join(base, "M")
     quoted = f'{base}/y"; touch {canary}; echo "'
-    cases = [(["workspace", f"DIR={base}/x`touch {canary}`"], 0),
-             (["workspace", f"DIR={quoted}"], 0),
-             (["test", f"K=zz; touch {canary} #"], None),
-             (["sweep", f"N=1; touch {canary}"], None)]
-    for args, expected in cases:
+    cases = [(["workspace", f"DIR={base}/x`touch {canary}`"], 0, "my_problem.edp"),
+             (["workspace", f"DIR={quoted}"], 0, "my_problem.edp"),
+             # (JOBS=0: pytest in one process, which quotes the expression it refuses)
+             (["test", "JOBS=0", f"K=zz; touch {canary} #"], None,
+              "Wrong expression passed to '-k': zz; touch"),
+             (["sweep", f"N=1; touch {canary}"], None, "invalid int value: '1; touch")]
+    env = {k: v for k, v in os.environ.items() if k not in ("K", "DIR", "N", "JOBS", "PEERS")}
+    for args, expected, said in cases:
         proc = subprocess.run(["make", "-s"] + args, cwd=ROOT, stdout=subprocess.PIPE,
-                              stderr=subprocess.STDOUT, text=True)
-        made = ", the workspace made" if expected == 0 else ""
-        check(f"make {' '.join(args)}: nothing ran (no file M){made}",
+                              stderr=subprocess.STDOUT, text=True, env=env)
+        check(f"make {' '.join(args)}: nothing ran (no file M), the value reached its program",
               not os.path.exists(canary) and not os.path.exists(os.path.join(ROOT, "M"))
-              and (expected is None or proc.returncode == expected),
+              and (expected is None or proc.returncode == expected) and said in proc.stdout,
               f"exit {proc.returncode}: {proc.stdout.strip()[-200:]}")
     check("make workspace: the folders are named as given",
           os.path.isfile(os.path.join(quoted, "my_problem.edp")), str(os.listdir(base)))
