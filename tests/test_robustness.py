@@ -421,20 +421,33 @@ def test_gmsh_dies_with_its_run():
     o = out("killed while meshing")
     command = ["FreeFem++", "-nw", "benchmarks/hertz_sphere.edp", "-h", "0.004", "-out", o]
     proc = subprocess.Popen(command, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    def read(path, how=None):   # "" once the process or the descriptor is gone
+        try:
+            if how:
+                return how(path)
+            with open(path) as f:
+                return f.read()
+        except OSError:
+            return ""
+
+    def target(fd):   # (gmsh opens and closes its own files meanwhile)
+        try:
+            return os.readlink(f"/proc/{gmsh}/fd/{fd}")
+        except OSError:
+            return ""
     gmsh = None
     while proc.poll() is None and gmsh is None:   # until the run has started gmsh
-        children = open(f"/proc/{proc.pid}/task/{proc.pid}/children").read().split()
-        gmsh = next((int(c) for c in children if open(f"/proc/{c}/comm").read().strip() == "gmsh"),
-                    None)
+        children = read(f"/proc/{proc.pid}/task/{proc.pid}/children").split()
+        gmsh = next((int(c) for c in children if read(f"/proc/{c}/comm").strip() == "gmsh"), None)
         time.sleep(0.01)
     group = os.getpgid(gmsh) if gmsh else None
-    fds = os.listdir(f"/proc/{gmsh}/fd") if gmsh else []
-    inherited = [os.readlink(f"/proc/{gmsh}/fd/{fd}") for fd in fds]
+    inherited = [target(fd) for fd in (read(f"/proc/{gmsh}/fd", os.listdir) if gmsh else [])]
     proc.kill()
     proc.wait()
     # until gmsh is gone (a zombie of init's until reaped)
     def alive(pid):
-        return os.path.exists(f"/proc/{pid}") and open(f"/proc/{pid}/stat").read().split()[2] != "Z"
+        state = read(f"/proc/{pid}/stat").split()
+        return len(state) > 2 and state[2] != "Z"
     while gmsh and alive(gmsh):
         time.sleep(0.01)
     check("killed while meshing: gmsh ran in a group of its own, without the folder's .lock open",
