@@ -5,10 +5,16 @@
 # Debian's interpreter, where the deps script installs matplotlib (a pyenv shim may shadow it)
 PYTHON := $(shell test -x /usr/bin/python3 && echo /usr/bin/python3 || echo python3)
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+N ?= 200
+# The variables a user sets (make K=hertz, DIR=..., N=..., JOBS=..., PEERS=1) reach the recipes as
+# environment variables, quoted by the shell ("$$K"), never as command text: make pastes $(K) into
+# the line it hands the shell, where K='zz; touch M #' ran touch. (After the defaults: an export
+# before them defined the names empty, and ?= then kept them so.)
+export K DIR N JOBS PEERS
 NAMES = $(shell $(PYTHON) scripts/run_benchmarks.py --names)
 
 run: deps
-	@$(MAKE) --no-print-directory -j$(JOBS) report
+	@$(MAKE) --no-print-directory -j"$$JOBS" report
 
 # the report first (a failing benchmark shows red in it), then the verdict table, whose exit code
 # fails `make` when a verdict fails
@@ -26,7 +32,7 @@ convergence-quick:
 # pytest over tests/test_*.py, one worker per core, the slowest tests listed; `make test K=hertz`
 # runs the tests whose names contain hertz
 test: deps
-	$(PYTHON) -m pytest tests -n $(JOBS) --durations=15 -p no:cacheprovider $(if $(K),-k $(K))
+	$(PYTHON) -m pytest tests -n "$$JOBS" --durations=15 -p no:cacheprovider $${K:+"-k$$K"}
 
 # Hertz benchmarks refined from h = a/10 to a/160 (a few minutes): results/hertz_convergence.md
 convergence: deps
@@ -39,19 +45,17 @@ convergence: deps
 # PEERS=1: also DOLFINx's SNES-VI solve of the same Hertz meshes and FElupe on the O-ring
 # (installs python3-dolfinx, and FElupe in a venv; 14 minutes in all on the 2-core machine)
 bench: deps
-	@if [ -n "$(PEERS)" ]; then bash scripts/install_deps.sh --peers; fi
-	$(PYTHON) scripts/performance/studies.py $(if $(PEERS),--peers)
+	@if [ -n "$$PEERS" ]; then bash scripts/install_deps.sh --peers; fi
+	$(PYTHON) scripts/performance/studies.py $${PEERS:+--peers}
 	$(PYTHON) scripts/performance/scaling.py
 
 # randomized parameter sets, checked for what must always hold (fixed seed; N=200 by default)
-N ?= 200
 sweep: deps
-	$(PYTHON) scripts/sweep.py --n $(N)
+	$(PYTHON) scripts/sweep.py "--n=$$N"
 
 # a folder of your own for your own problem: `make workspace DIR=~/my_contact` (docs/writing_your_own_problem.md)
 workspace: deps
-	@test -n "$(DIR)" || { echo "error: give the folder: make workspace DIR=<folder>"; exit 2; }
-	@bash scripts/workspace.sh "$(DIR)"
+	@bash scripts/workspace.sh
 
 # Debian's packages, then the suite's plugins (each plugin/<name>.cpp says what it is for):
 # headless, which freefem++.pref loads; run_control (exit codes, wall clock), files (no shell),

@@ -17,13 +17,16 @@
 // the file's vertices as they are. Prints one line when it splits. A file it cannot read ends
 // the run with "error: ..." and exit code 2 (the suite's bad-input code).
 //
-// mshProblem(file, dim): why an ASCII msh 2.2 file given by a user (-mesh) cannot be used as a mesh
-// of dimension dim, or "" when it can, before FreeFEM's readers see it (gmshload ends in an
-// assertion or reads out of bounds on a corrupt file): the format, the sections and their counts,
-// finite coordinates, no repeated node number, every element's nodes present, only point, line,
-// triangle (and in 3D tetrahedron) elements, at least one element of the dimension and one of its
-// boundary, and no element of the dimension with a zero area or volume (below 1e-12 of the
-// bounding box's).
+// mshProblem(file, dim, size): why an ASCII msh 2.2 file given by a user (-mesh) cannot be used as
+// a mesh of dimension dim for a body of the given size, or "" when it can, before FreeFEM's readers
+// see it (gmshload ends in an assertion or reads out of bounds on a corrupt file): the format, the
+// sections and their counts, finite coordinates, no repeated node number, every element's nodes
+// present, only point, line, triangle (and in 3D tetrahedron) elements, at least one element of the
+// dimension and one of its boundary, no element of the dimension with a zero area or volume (below
+// 1e-12 of the bounding box's) or turned inside out (a clockwise triangle ended in FreeFEM's
+// "Assertion fail: (area > 0)"; an inverted tetrahedron reached the solver), and the bounding box's
+// largest side within a factor 2 of size (a mesh in other units, 1000 times too large, reached the
+// solver, exit 3).
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
 #include <cerrno>
@@ -225,7 +228,7 @@ pmesh3 loadMsh3(Stack stack, string *const &fileName, const long &split) {
   }
 }
 
-std::string mshCheck(const std::string &file, long dim) {
+std::string mshCheck(const std::string &file, long dim, double bodySize) {
   Reader in(file);
   if (!in.section("MeshFormat")) refuse(file, "no $MeshFormat section (gmsh -format msh22)");
   double version = in.real();
@@ -283,25 +286,37 @@ std::string mshCheck(const std::string &file, long dim) {
       double measure;
       if (dim == 3) {
         int w[4] = {int(v[0]), int(v[1]), int(v[2]), int(v[3])};
-        measure = std::fabs(signedVolume(xyz, w));
+        measure = signedVolume(xyz, w);
       } else {
         const double *a = &xyz[3 * v[0]], *b = &xyz[3 * v[1]], *c = &xyz[3 * v[2]];
-        measure = 0.5 * std::fabs((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]));
+        measure = 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]));
       }
-      if (!(measure > 1e-12 * std::pow(size, double(dim))))
-        refuse(file, "element " + std::to_string(number) + " is degenerate (" + (dim == 3 ? "zero volume" : "zero area") + ")");
+      std::string element = "element " + std::to_string(number);
+      if (!(std::fabs(measure) > 1e-12 * std::pow(size, double(dim))))
+        refuse(file, element + " is degenerate (" + (dim == 3 ? "zero volume" : "zero area") + ")");
+      if (measure < 0)
+        refuse(file, element + (dim == 3
+                                ? " is inverted (negative volume: its nodes in the wrong order)"
+                                : " is clockwise (negative area): FreeFEM takes counter-clockwise"
+                                  " triangles"));
     }
   }
   if (!in.section("EndElements")) refuse(file, "the $Elements section is cut short (no $EndElements)");
   if (volumes == 0) refuse(file, dim == 3 ? "no tetrahedra" : "no triangles");
   if (boundaries == 0) refuse(file, dim == 3 ? "no boundary triangles" : "no boundary lines");
+  if (bodySize > 0 && !(size >= bodySize / 2 && size <= 2 * bodySize)) {
+    char text[160];
+    snprintf(text, sizeof text, "its bounding box's largest side, %g, is not within a factor 2 of "
+             "the body's size %g (other units?)", size, bodySize);
+    refuse(file, text);
+  }
   return "";
 }
 
-string *mshProblem(Stack stack, string *const &fileName, const long &dim) {
+string *mshProblem(Stack stack, string *const &fileName, const long &dim, const double &bodySize) {
   std::string why;
   try {
-    why = mshCheck(*fileName, dim);
+    why = mshCheck(*fileName, dim, bodySize);
   } catch (const MshError &e) {
     why = e.what;
   }
@@ -310,7 +325,7 @@ string *mshProblem(Stack stack, string *const &fileName, const long &dim) {
 
 void init() {
   Global.Add("loadMsh3", "(", new OneOperator2s_<pmesh3, string *, long>(loadMsh3));
-  Global.Add("mshProblem", "(", new OneOperator2s_<string *, string *, long>(mshProblem));
+  Global.Add("mshProblem", "(", new OneOperator3s_<string *, string *, long, double>(mshProblem));
 }
 
 }  // namespace

@@ -6,11 +6,14 @@ solver tolerance (1e-6 of the peak pressure), and for Hertz (linear, a/R <= 0.08
 above, P1 locks and the errors are only reported) and the cube their analytic errors within
 the bounds of the tests (a, p_max 0.3 %, L2 of p 1 %; w 1e-8); for two bodies, action = reaction
 to 1e-12, each body's balance to 1e-8, and with small sliding two-body Hertz within the tests'
-bounds (0.5 %, L2 1.5 %; updated pairing adds the O(a/R) geometry Hertz drops). One case in six is
+bounds (0.5 %, L2 1.5 %; updated pairing adds the O(a/R) geometry Hertz drops). One case in seven is
 hostile input (a non-finite, overflowing or malformed number, or a path with a quote, a control
 character or a leading '-'): exit 2 with one error line naming the parameter, nothing written, nothing
-run. Prints the worst case of each check with the command that reproduces it, and
-writes results/sweep/sweep.json.
+run. One in seven is a hostile folder or state (issue 42): a hard link at an output's name (the
+file outside untouched), a run's mesh read back from its output folder (kept), a FIFO, a link to
+/dev/zero or a folder where a file is read (refused at once), a time run ended before its impact is
+over (exit 4, no result against a reference), a -tol beyond 1e-5 (exit 2). Prints the worst case of
+each check with the command that reproduces it, and writes results/sweep/sweep.json.
     sweep.py [--n 200] [--seed 20261122] [--jobs 2]
 On a cluster (docs/scaling.md): the cases as a run list (scripts/run_list.py), one per job-array task,
 each task's verdict in <out>/<case>/check.json, then their summary:
@@ -25,6 +28,7 @@ import json
 import math
 import os
 import random
+import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -132,7 +136,36 @@ def draw_hostile(rng):
     return script, [f"-{name}", value], "hostile"
 
 
-DRAWS = [draw_hertz, draw_cube, draw_oring, draw_sphere_axisymmetric, draw_two_cylinders, draw_hostile]
+# Hostile folders and states (issue 42): what lies in the output folder or where an input is read,
+# and runs that cannot reach what their references describe. Each kind with what it must give.
+OUTPUT_NAMES = ["pressure.csv", "ipopt.opt", "summary.json", "hertz_plane.vtu",
+                "ipopt_step00001.log"]
+SPECIAL = ["fifo .outputs", "zero .outputs", "fifo pressure.csv", "fifo -mesh", "folder -mesh",
+           "fifo -splinefile"]
+READER = {"-mesh": "benchmarks/hertz_plane.edp", "-splinefile": "benchmarks/hertz_circle.edp"}
+
+
+def draw_hostile_state(rng):
+    kind = rng.choice(["link", "input", "special", "short", "tol"])
+    if kind == "link":
+        return "benchmarks/hertz_plane.edp", [rng.choice(OUTPUT_NAMES)], "hostile-link"
+    if kind == "input":   # (a fixed coarse mesh: at h = 0.0274 its Hertz fit failed, exit 3)
+        args = ["-h", "0.02", "-zone", "0.2", "-hmax", "0.3"]
+        return "benchmarks/hertz_sphere.edp", args, "hostile-input"
+    if kind == "special":
+        what = rng.choice(SPECIAL)
+        return READER.get(what.split()[1], "benchmarks/cube.edp"), what.split(), "hostile-special"
+    if kind == "short":   # the bar meets the wall at 1e-5 s and leaves it at 7.9e-5 s
+        args = ["-n", str(rng.randint(20, 60)), "-gap", "1e-3", "-every", "0",
+                "-tend", f"{rng.uniform(2e-6, 6e-5):.3g}"]
+        return "benchmarks/bar_impact.edp", args, "hostile-short"
+    script = rng.choice(["benchmarks/hertz_plane.edp", "benchmarks/cube.edp",
+                         "benchmarks/platen_block.edp"])
+    return script, ["-tol", f"{10 ** rng.uniform(-4.9, -1):.3g}"], "hostile-tol"
+
+
+DRAWS = [draw_hertz, draw_cube, draw_oring, draw_sphere_axisymmetric, draw_two_cylinders,
+         draw_hostile, draw_hostile_state]
 
 
 def check_hostile(script, args, out_dir):
@@ -146,6 +179,68 @@ def check_hostile(script, args, out_dir):
     ok = code == 2 and len(errors) == 1 and first == errors[0] and args[0] in first and not left and not canary
     cmd = f"FreeFem++ {script} {' '.join(repr(a) for a in args)}"
     detail = f"exit {code}: {first[:120]}" + (" (canary file created)" if canary else "") + (" (summary left)" if left else "")
+    return {"command": cmd, "failed": not ok, "detail": detail, "checks": {}, "seconds": seconds}
+
+
+def check_hostile_state(script, args, kind, out_dir):
+    """A hostile folder or state (draw_hostile_state): what each kind must give, nothing lost."""
+    folder = out_dir if os.path.isabs(out_dir) else os.path.join(ROOT, out_dir)
+    os.makedirs(folder, exist_ok=True)
+    run_args, seconds, detail = [], 0.0, ""
+
+    def plant(path):   # (a sweep run again into its folders: what it planted before goes first)
+        if os.path.isdir(path) and not os.path.islink(path):
+            os.rmdir(path)
+        elif os.path.lexists(path):
+            os.remove(path)
+        return path
+    if kind == "link":   # a hard link at an output's name: replaced, the file outside untouched
+        victim = folder + ".outside"
+        with open(victim, "w") as f:
+            f.write("precious\n")
+        os.link(victim, plant(os.path.join(folder, args[0])))
+        code, output, seconds = run_driver(script, [], folder)
+        ok = code == 0 and open(victim).read() == "precious\n"
+        detail = f"exit {code}, the file outside {'untouched' if ok else 'changed'}"
+    elif kind == "input":   # the run's own mesh read back from its output folder: kept, read
+        code1, _, s1 = run_driver(script, args, folder)
+        mesh = os.path.join(folder, "quarter_hemisphere.msh")
+        before = open(mesh).read() if os.path.exists(mesh) else None
+        run_args = ["-mesh", mesh]
+        code, output, s2 = run_driver(script, run_args, folder)
+        seconds = s1 + s2
+        kept = before is not None and os.path.exists(mesh) and open(mesh).read() == before
+        ok = code1 == 0 and code == 0 and kept
+        detail = f"exits {code1}, {code}; the mesh {'kept' if ok else 'lost or changed'}"
+    elif kind == "special":   # a FIFO, /dev/zero or a folder where a file is read: refused at once
+        what, where = args
+        target = plant(folder + ".input" if where.startswith("-") else os.path.join(folder, where))
+        if what == "fifo":
+            os.mkfifo(target)
+        elif what == "zero":
+            os.symlink("/dev/zero", target)
+        else:
+            os.makedirs(target)
+        run_args = [where, target] if where.startswith("-") else []
+        try:
+            code, output, seconds = run_driver(script, run_args, folder, timeout=120)
+        except subprocess.TimeoutExpired:
+            code, output, seconds = "timeout", "", 120.0
+        errors = [l for l in output.splitlines() if l.startswith("error:")]
+        ok = (code == 2 and len(errors) == 1 and os.path.lexists(target)
+              and read_summary(folder) is None)
+        detail = f"exit {code}: {errors[:1]}"
+    else:   # a short time run (exit 4, impact_over, no reference), a loose -tol (exit 2 naming it)
+        code, output, seconds = run_driver(script, args, folder)
+        s = read_summary(folder)
+        if kind == "short":
+            ok = code == 4 and s is not None and s["checks_failed"] == ["impact_over"] and all(
+                q["reference"] is None for q in s["results"].values())
+        else:
+            ok = code == 2 and s is None and any(l.startswith("error:") and "-tol" in l
+                                                 for l in output.splitlines())
+        detail = f"exit {code}: {[l for l in output.splitlines() if l.startswith('error:')][:1]}"
+    cmd = f"({kind}) FreeFem++ {script} {' '.join(repr(a) for a in (run_args or args))}"
     return {"command": cmd, "failed": not ok, "detail": detail, "checks": {}, "seconds": seconds}
 
 
@@ -163,6 +258,8 @@ def check_case(name, script, args, size, out_root, processes=1):
 def run_case(out_dir, script, args, size, processes):
     if size == "hostile":
         return check_hostile(script, args, out_dir)
+    if str(size).startswith("hostile-"):
+        return check_hostile_state(script, args, size[len("hostile-"):], out_dir)
     code, output, seconds = run_driver(script, args, out_dir, processes=processes)
     s = read_summary(out_dir)
     cmd = f"FreeFem++ {script} {' '.join(args)}"

@@ -206,6 +206,39 @@ CASES = [
     (SPHERE, ["-mesh", "{tmp}/flat_tet.msh"], "degenerate"),
     (PLANE, ["-mesh", "{tmp}/square.msh", "-h", "0.01"], "-h"),
     (SPHERE, ["-mesh", "{tmp}/flat_tet.msh", "-zone", "0.1"], "-zone"),
+    # issue 42: a -tol loose enough that the contact set spreads with every check passing, a floor
+    # the mesh cannot resolve, more load steps than a run takes (their records were cut at 1000)
+    (PLANE, ["-tol", "1e-3", "-condense", "no"], "-tol"),
+    (PLATEN, ["-waves", "1000000"], "-waves"),
+    (PLATEN, ["-splinepoints", "20"], "-splinepoints"),
+    (CUBE, ["-steps", "1500"], "-steps"),
+    # issue 42: runaway work refused before meshing (GBs of memory, hours of load steps)
+    (PATCH, ["-H", "1e5", "-n1", "20", "-n2", "20"], "-H"),
+    (PATCH, ["-n1", "2000", "-n2", "2000"], "-n1"),
+    (ORING, ["-steps", "100000"], "-steps"),
+    (CATTANEO, ["-steps", "1000000"], "-steps"),
+    (BAR, ["-n", "20000", "-ny", "1000"], "-n"),
+    # issue 42: FreeFEM's own errors, each now one line (Div by 0, border points too close, Strange
+    # catch exception, an assertion; a mesh inverted or 1000 times too large reached the solver)
+    (BAR, ["-v0", "0"], "-v0"),
+    (BARS, ["-v0", "0"], "-v0"),
+    (BARS, ["-n", "0"], "-n"),
+    (CATTANEO, ["-zone", "0"], "-zone"),
+    (FLANGE, ["-T", "1e-30"], "-T"),
+    (PLANE, ["-mesh", "{tmp}/a_folder"], "-mesh"),
+    (SPHERE, ["-mesh", "{tmp}/a_folder"], "-mesh"),
+    (PLANE, ["-mesh", "{tmp}/clockwise.msh"], "clockwise"),
+    (SPHERE, ["-mesh", "{tmp}/inverted_tet.msh"], "inverted"),
+    (PLANE, ["-mesh", "{tmp}/thousandfold.msh"], "factor 2"),
+    # issue 42: messages name the parameter the user gave, quote its value as typed and shortened
+    (BARS, ["-n", "-5"], "-n"),
+    (INDENTATION, ["-depth", "1e-9"], "-depth"),
+    (SPHERES, ["-R1", "1e-30"], "-R1"),
+    (CUBE, ["-nu", "0.5000001", "-volumetric", "nodal"], "0.5000001"),
+    (CUBE, ["-nu", "0.4999999999"], "-nu"),
+    (CUBE, ["-material", "x" * 5000], "(5000 characters)"),
+    (CIRCLE, ["-splinefile", "{tmp}/a_folder"], "-splinefile"),
+    (BAR, ["-dt", "1e-12"], "-dt"),
 ]
 
 
@@ -229,6 +262,20 @@ def make_files(tmp):
     with open(os.path.join(tmp, "flat_tet.msh"), "w") as f:   # four nodes in one plane
         f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 1 1 0\n$EndNodes\n"
                 "$Elements\n2\n1 2 2 1 1 1 2 3\n2 4 2 1 1 1 2 3 4\n$EndElements\n")
+    # issue 42: clockwise triangles (FreeFEM's "Assertion fail: (area > 0)"), an inverted
+    # tetrahedron (FreeFEM's "Error of mesh orientation") and a mesh 1000 times too large (it
+    # reached the solver, exit 3)
+    with open(os.path.join(tmp, "clockwise.msh"), "w") as f:
+        f.write(square.format(x4="0", t2="4", count=6, lines=lines.format(e6="1"))
+                .replace("1 2 2 1 1 1 2 3\n2 2 2 1 1 1 3 4", "1 2 2 1 1 1 3 2\n2 2 2 1 1 1 4 3"))
+    with open(os.path.join(tmp, "thousandfold.msh"), "w") as f:
+        f.write(square.format(x4="0", t2="4", count=6, lines=lines.format(e6="1"))
+                .replace("2 1 0 0\n3 1 1 0\n4 0 1 0", "2 1000 0 0\n3 1000 1000 0\n4 0 1000 0"))
+    with open(os.path.join(tmp, "inverted_tet.msh"), "w") as f:
+        f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n"
+                "4 0 0 1\n$EndNodes\n$Elements\n2\n1 2 2 1 1 1 2 3\n2 4 2 1 1 1 3 2 4\n"
+                "$EndElements\n")
+    os.makedirs(os.path.join(tmp, "a_folder"), exist_ok=True)
     with open(os.path.join(tmp, "decreasing.txt"), "w") as f:
         f.write("0 0\n0.1 -0.01\n0.05 -0.002\n0.2 -0.03\n0.3 -0.04\n")
     with open(os.path.join(tmp, "garbled.txt"), "w") as f:

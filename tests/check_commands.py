@@ -15,7 +15,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BASE = {"sh", "bash", "cd", "test", "[", "echo", "cat", "rm", "mv", "mkdir", "touch", "cp", "sort", "date", "sleep",
         "printf", "true", "false", "exit", "env", "dirname", "ls", "grep", "sed", "tail", "head", "set", "command",
         "mapfile", "id", "export", "for", "do", "done", "if", "then", "fi", "return", "pwd", "dpkg", "apt-get", "make",
-        "sudo", "mount", "umount"}
+        "sudo", "mount", "umount", "stat"}
 SHELL_SPLIT = re.compile(r"&&|\|\||;|\|")
 
 

@@ -184,11 +184,6 @@ def error_lines(output):
     return [l for l in output.splitlines() if l.startswith("error:")]
 
 
-def stale_summary(folder):
-    with open(os.path.join(folder, "summary.json"), "w") as f:
-        json.dump({"complete": True, "stale": True}, f)
-
-
 def two_body_case(label, script, args, bound_a, bound_l2):
     """A two-body Hertz run: hertz_case's checks against the two-body Hertz values (penetration
     relative to the bodies' size 2 max(R1, R2)), then action = reaction between the bodies (exact by construction: 1e-12), each
