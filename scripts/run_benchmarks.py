@@ -17,7 +17,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from benchmark_list import BENCHMARKS  # noqa: E402
-from freefem import ROOT, read_summary, run_driver, run_ok, summary_failure  # noqa: E402
+from freefem import ROOT, read_summary, run_driver, run_ok, share_cores, summary_failure  # noqa: E402
 import md_tables  # noqa: E402
 import run_list  # noqa: E402
 import verdicts  # noqa: E402
@@ -120,4 +120,5 @@ def main(argv):
 
 
 if __name__ == "__main__":
+    share_cores()
     sys.exit(main(sys.argv[1:]))

@@ -10,6 +10,9 @@ import shutil
 import pytest
 
 import helpers
+from freefem import share_cores
+
+share_cores()
 
 
 @pytest.hookimpl(hookwrapper=True)

@@ -116,3 +116,20 @@ def test_docs_readme_length():
     """The README leads and the manual is in docs/: at most 200 lines."""
     lines = len(open(os.path.join(ROOT, "README.md")).read().splitlines())
     check(f"README.md has at most {README_MAX_LINES} lines", lines <= README_MAX_LINES, f"{lines} lines")
+
+
+def test_docs_statuses():
+    """Every status a step can record (IPOPT's names as include/solve/ipopt_problem.idp spells them,
+    the suite's own, plain Newton's) is listed in docs/robustness.md's table of statuses, and the
+    table names no status the code cannot produce."""
+    code = "".join(open(os.path.join(ROOT, "include", "solve", f)).read() for f in ("ipopt_problem.idp", "newton.idp"))
+    names = set(re.findall(r'return "([A-Z][A-Za-z_]+)(?:\(|")', code)) | set(re.findall(r'"(Newton_[A-Za-z_]+)"', code))
+    names.discard("Internal_Error")
+    page = open(os.path.join(ROOT, "docs", "robustness.md")).read()
+    table = page.split("## Solver statuses", 1)[-1].split("\n## ", 1)[0]
+    listed = set(re.findall(r"`([A-Z][A-Za-z_]+)(?:\(<why>\))?`", table.split("| try |", 1)[-1]))
+    check("statuses: the code's names found (IPOPT's 19, the suite's, Newton's)", len(names) >= 28, str(sorted(names)))
+    for name in sorted(names):
+        check(f"statuses: {name} in docs/robustness.md's table", name in listed)
+    for name in sorted(listed - names):
+        check(f"statuses: the table's {name} is one the code produces", False)
