@@ -1,7 +1,7 @@
 # Quick start: `make` runs every benchmark and writes the report (results/REPORT.md and
 # results/report.html); `make test` runs the test suite. Both install missing dependencies
 # first. Benchmarks run in parallel, one per core (JOBS=1 for one at a time).
-.PHONY: run report table test convergence sweep bench deps clean workspace
+.PHONY: run report table test convergence sweep bench deps clean workspace check-driver
 # Debian's interpreter, where the deps script installs matplotlib (a pyenv shim may shadow it)
 PYTHON := $(shell test -x /usr/bin/python3 && echo /usr/bin/python3 || echo python3)
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
@@ -10,7 +10,7 @@ N ?= 200
 # environment variables, quoted by the shell ("$$K"), never as command text: make pastes $(K) into
 # the line it hands the shell, where K='zz; touch M #' ran touch. (After the defaults: an export
 # before them defined the names empty, and ?= then kept them so.)
-export K DIR N JOBS PEERS
+export K DIR N JOBS PEERS F
 NAMES = $(shell $(PYTHON) scripts/run_benchmarks.py --names)
 
 run: deps
@@ -56,6 +56,10 @@ sweep: deps
 # a folder of your own for your own problem: `make workspace DIR=~/my_contact` (docs/writing_your_own_problem.md)
 workspace: deps
 	@bash scripts/workspace.sh
+
+# a driver's names that hide FreeFEM's or the suite's: `make check-driver F=my_problem.edp`
+check-driver:
+	@$(PYTHON) scripts/check_driver.py "$$F"
 
 # Debian's packages, then the suite's plugins (each plugin/<name>.cpp says what it is for):
 # headless, which freefem++.pref loads; run_control (exit codes, wall clock), files (no shell),

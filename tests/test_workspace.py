@@ -1,6 +1,7 @@
 """The suite as a user meets it: the output contract, the working folder, headless runs, the template in a workspace of its own, the external programs."""
 
 from helpers import *  # noqa: F401,F403 (check, out, run_driver, read_summary, ROOT, TMP and the shared helpers)
+import glob  # noqa: E402
 
 
 def test_output_contract():
@@ -223,3 +224,34 @@ def test_include_alone():
         check(f"alone {rel} without a dimension file: one error line, exit 2",
               code == 2 and len(lines) == 1 and lines[0].startswith("error:") and "dimension file" in lines[0],
               f"exit {code}: {lines[:3]}")
+
+
+def test_check_driver():
+    """`make check-driver F=...` (scripts/check_driver.py): a driver declaring `int floor` at its top
+    (issue 41: FreeFEM's floor() hidden, the error reported inside a solver file) is warned about on
+    its line, as is one reusing a suite name inside a block; exit 1. Every shipped driver, the
+    template and the tests' own .edp files hide nothing: exit 0. A missing file: exit 2."""
+    work = os.path.join(TMP, "check_driver")
+    os.makedirs(work, exist_ok=True)
+    driver = os.path.join(work, "clash.edp")
+    with open(driver, "w") as f:
+        f.write('include "prelude.idp"\nint floor = 2;\nreal nu = 0.3;\n{\n  real[int] contactNodalActive(3);\n}\n')
+    proc = subprocess.run(["make", "--no-print-directory", "check-driver"], cwd=ROOT, env=dict(os.environ, F=driver),
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    warnings = [l for l in proc.stdout.splitlines() if l.startswith("warning:")]
+    check("check-driver: int floor named with its line 2 and FreeFEM's floor",
+          any(f"{driver}:2: 'floor' hides FreeFEM's built-in floor" in w for w in warnings), str(warnings))
+    check("check-driver: a suite name inside a block named with its line 5 and its file",
+          any(":5: 'contactNodalActive' hides the suite's" in w and "include/contact/" in w for w in warnings), str(warnings))
+    check("check-driver: nu (no clash) not named, two warnings", len(warnings) == 2, str(warnings))
+    check("check-driver: exit code non-zero with a clash (make passes the script's 1 on)", proc.returncode != 0, str(proc.returncode))
+    shipped = sorted(glob.glob(os.path.join(ROOT, "benchmarks", "*.edp")) + glob.glob(os.path.join(ROOT, "tests", "*.edp"))
+                     + [os.path.join(ROOT, "docs", "template", "my_problem.edp")])
+    for path in shipped:
+        proc = subprocess.run([sys.executable, "scripts/check_driver.py", path], cwd=ROOT,
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        check(f"check-driver: {os.path.relpath(path, ROOT)} hides nothing (exit 0)", proc.returncode == 0, proc.stdout.strip()[-300:])
+    proc = subprocess.run([sys.executable, "scripts/check_driver.py", os.path.join(work, "missing.edp")], cwd=ROOT,
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    check("check-driver: a missing file is one error line, exit 2",
+          proc.returncode == 2 and proc.stdout.startswith("error:"), proc.stdout)
