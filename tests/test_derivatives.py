@@ -24,6 +24,12 @@ from helpers import *  # noqa: F401,F403 (check, out, run_driver, read_summary, 
 #     bound 1e-8), the dissipation positively homogeneous, on a curved obstacle's rows and a pair's
 #   fd_inertia: a time step's inertia term (body/inertia.idp) in the energy, gradient, Hessian and its
 #     lower triangle, linear and Neo-Hookean (h = 1e-6: measured 1e-11..3e-11; bound 1e-8)
+#   fd_fluid_pressure: the fluid pressure's term p V(U) (body/fluid_pressure.idp), plane strain and
+#     axisymmetric, an arc closed along two walls and a closed outline: V's gradient and Hessian
+#     (h = 1e-5, V quadratic or cubic: measured 1.8e-11..4.1e-11, bound 2e-10), the wired energy's
+#     gradient and tangent (h = 1e-6: 5.8e-12..7.5e-11, bound 5e-10), and with the wall nodes on their
+#     walls the nodal forces against -p n (2 pi r) ds on the deformed mesh and V against the deformed
+#     volume (round-off: 0..6e-16, bound 1e-12)
 #   stiffness_check: linear elasticity's Lame-form Hessian against the generic tangent (P1 and P2
 #     in 2D, P1 in 3D and axisymmetric, whole and as the lower triangle, moduli varying per element),
 #     and a hyperelastic tangent and forces from the plugin against their varfs: equal to 1e-12
@@ -34,6 +40,7 @@ SCRIPTS = {
     "fd_pairs": (lambda: 12, None),
     "fd_friction": (lambda: 6, None),
     "fd_inertia": (lambda: 6, "fd_inertia law="),
+    "fd_fluid_pressure": (lambda: 24, None),
     "stiffness_check": (lambda: 9, None),
 }
 
