@@ -1,0 +1,98 @@
+"""The fluid pressure as a load of the energy (issue 44, include/body/fluid_pressure.idp): the exact
+homogeneous states of tests/fluid_pressure_check.edp (an immersed body, a block confined in a rigid
+frictionless channel and pressed by the fluid on its free face), their balances, and the errors a
+wrong set-up gets. Its derivatives: tests/fd_fluid_pressure.edp (test_derivatives.py)."""
+
+from helpers import *  # noqa: F401,F403 (check, out, run_driver, read_summary, ROOT, TMP, ...)
+
+CHECK = "tests/fluid_pressure_check.edp"
+# P1 reproduces the exact states, so what is left is the solver's (IPOPT and the condensed SQP at
+# -tol 1e-12: measured 2e-17..3.2e-11 of p / G for the displacement, 0..3.1e-11 for J, 1.7e-11..
+# 9.6e-10 for the wall and floor pressures)
+EXACT = 1e-8
+BALANCE = 1e-10      # measured 0..6.2e-11 (the immersed body's reactions at nu = 0.499)
+RESULTANT = 1e-12    # the fluid's resultant on the deformed surface: round-off (0..4.2e-14)
+CASES = [("2", "neohookean", "0.45"), ("2", "neohookean", "0.499"), ("2", "neohookean", "0.5"),
+         ("axi", "neohookean", "0.45"), ("axi", "neohookean", "0.499"),
+         ("axi", "neohookean", "0.5"), ("2", "mooney", "0.499"), ("axi", "mooney", "0.5")]
+
+
+def fluid_case(case, dim, material, nu):
+    label = f"fluid {case} dim={dim} {material} nu={nu}"
+    s = run_summary(label, CHECK, ["-case", case, "-dim", dim, "-material", material, "-nu", nu])
+    if s is None:
+        return label, None
+    r = s["results"]
+    e = r["displacement_error"]["computed"]
+    check(f"{label}: displacement exact to {EXACT:g} of p / G", e <= EXACT, f"{e:.1e}")
+    for name in ("J_min", "J_max"):
+        check(f"{label}: {name} exact to {EXACT:g}", r[name]["rel_error"] <= EXACT,
+              f"{r[name]['computed']:.12g} vs {r[name]['reference']:.12g}")
+    if nu == "0.5":
+        for name in ("hydrostatic_pressure_min", "hydrostatic_pressure_max"):
+            check(f"{label}: the body's pressure is p ({name})", r[name]["rel_error"] <= EXACT,
+                  f"{r[name]['rel_error']:.1e}")
+    f = r["fluid_force_y"]["rel_error"]
+    check(f"{label}: the fluid's resultant exact", f <= RESULTANT, f"{f:.1e}")
+    b = r["force_balance_rel_error"]["computed"]
+    check(f"{label}: contact forces + reactions + fluid force = 0 to {BALANCE:g}", b <= BALANCE,
+          f"{b:.1e}")
+    return label, r
+
+
+def test_fluid_immersed():
+    """A quarter disc (plane strain) or hemisphere (axisymmetric) in the fluid, its symmetry lines
+    held: F = diag(l, l, 1) or l I from the law, exact; at nu = 0.5, l = 1 and the body's
+    pressure p."""
+    for dim, material, nu in CASES:
+        label, r = fluid_case("immersed", dim, material, nu)
+        if r is not None and dim == "2":
+            f = r["fluid_force_x"]["rel_error"]
+            check(f"{label}: the resultant's x component too", f <= RESULTANT, f"{f:.1e}")
+
+
+def test_fluid_confined():
+    """Pascal: the block filling a rigid frictionless channel, pressed by the fluid on its top:
+    uniaxial strain, the walls' pressure -P11 node by node from the multipliers (the top corners
+    included, where the fluid's outline turns along the wall: no force of the closure lands there),
+    p at nu = 0.5, and the floor's p."""
+    for dim, material, nu in CASES:
+        label, r = fluid_case("confined", dim, material, nu)
+        if r is None:
+            continue
+        walls = ["right_wall_pressure_rel_error", "floor_pressure_rel_error"]
+        if dim == "2":
+            walls.append("left_wall_pressure_rel_error")
+        for name in walls:
+            e = r[name]["computed"]
+            check(f"{label}: {name.replace('_rel_error', '')} exact to {EXACT:g} at every node",
+                  e <= EXACT, f"{e:.1e}")
+        if nu == "0.5":
+            check(f"{label}: the wall pressure is p", r["wall_pressure_exact"]["computed"] == 0.5)
+        f = r["floor_force"]["rel_error"]
+        check(f"{label}: the floor carries the fluid's force", f <= BALANCE, f"{f:.1e}")
+        check(f"{label}: nothing sinks into the walls", r["max_penetration"]["computed"] <= 1e-10)
+
+
+def test_fluid_errors():
+    """One error line and exit 2: a negative pressure; an arc ending on no wall; a linear law."""
+    code, output, _ = run_driver(CHECK, ["-pressure", "-1"], out("fluid bad pressure"))
+    errors = [l for l in output.splitlines() if l.startswith("error:")]
+    check("fluid: -pressure -1 refused",
+          code == 2 and len(errors) == 1 and "-pressure" in errors[0], output[-300:])
+    work = out("fluid set-up errors")
+    os.makedirs(work, exist_ok=True)
+    cases = (("no wall", 'setMooneyRivlin("neohookean", 0.5, 0, 0.45);', "", "on no fluid wall"),
+             ("linear law", "setLinearElastic(1, 0.3);", "addFluidWall(0, 0, 1, 0);",
+              "hyperelastic law"))
+    for name, law, walls, words in cases:
+        script = os.path.join(work, name.replace(" ", "_") + ".edp")
+        open(script, "w").write(
+            'include "prelude.idp"\nparamsDone();\n' + law + '\ninclude "dim2.idp"\n'
+            'mesh Th = square(3, 3);\nfespace Vh(Th, vectorFE(P1));\ninclude "model.idp"\n'
+            + walls + '\naddFluidPressure(3, 0.1);\nfixComponent(1, 2, 0)\n'
+            'real[int] U(Vh.ndof);\nU = 0;\nsolveLoadSteps(U, 1);\n')
+        code, output, _ = run_driver(script, [], None)
+        errors = [l for l in output.splitlines() if l.startswith("error:")]
+        check(f"fluid: {name} refused with one line",
+              code == 2 and len(errors) == 1 and words in errors[0], output[-300:])
