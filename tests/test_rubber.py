@@ -60,10 +60,12 @@ def test_cube_homogeneous_default_form():
     ended in another state, which the run reported with exit 4). Under the dead load (the preprint's loading) it is stable only to 20-26 % on these
     meshes (tests/stability_check.edp): up to 20 % every run must land on it; at 28 % the block
     buckles at its free top corner, and the run must say so (exit 4, the tangent's negative eigenvalue
-    at the exact state) instead of reporting the buckled state against the exact one."""
+    at the exact state) instead of reporting the buckled state against the exact one. Poisson's ratio
+    compressible (0.45), nearly (0.4999: the penalty's K / G = 5000) and exactly incompressible (0.5);
+    0.499 went, which took 40 of the 180 runs and met every check as 0.4999 did (make test's 15 minutes)."""
     for dim in ("2", "axi"):
         for material in ("mooney", "neohookean"):
-            for nu in ("0.45", "0.499", "0.4999", "0.5"):
+            for nu in ("0.45", "0.4999", "0.5"):
                 for foundation in ("0", "1"):
                     for perturb in ("0", "0.3"):
                         for c, steps in (("0.01", "1"), ("0.35", "4")):
