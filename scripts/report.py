@@ -449,6 +449,94 @@ def fig_oring_groove(name, filename):
                   "O-ring in the closing groove: face forces\n" + params_text(s, ["C10", "nu", "R", "gap", "side"]), filename)
 
 
+def fig_seal_pressure(name, filename):
+    """The contact pressure along the ring's surface at several fluid pressures, the wetted part
+    drawn at p: the fluid follows the contacts up to the fronts."""
+    s = summary(name)
+    steps = sorted(f for f in os.listdir(os.path.join(RESULTS, name)) if f.startswith("surface_p")) \
+        if s and os.path.isdir(os.path.join(RESULTS, name)) else []
+    if not steps:
+        return None
+    fig, ax = plt.subplots(figsize=(7.5, 4.2))
+    later = steps[1:]
+    chosen = [steps[0]] + [later[round(i * (len(later) - 1) / 3)] for i in range(4)] if len(later) >= 4 else steps
+    for i, f in enumerate(chosen):
+        rows = read_csv(os.path.join(RESULTS, name, f))
+        angle, contact = column(rows, "angle_deg"), column(rows, "contact_pressure")
+        wet, fluid = column(rows, "wetted"), column(rows, "fluid_pressure")
+        p = fluid.max() if wet.any() else 0.0
+        line, = ax.plot(angle, contact, "-", lw=1.2, label=f"p = {p:g}: contact")
+        if wet.any():
+            ax.plot(np.where(wet > 0, angle, np.nan), np.where(wet > 0, fluid, np.nan), ":", lw=2.5,
+                    color=line.get_color(), label=f"p = {p:g}: wetted")
+    ax.set_xticks(range(-180, 181, 45))
+    return finish(fig, ax, "angle on the ring about its centre (degrees; fluid enters at -45, gap at 135)",
+                  "pressure on the ring (stress unit)",
+                  "O-ring seal: contact pressure and the wetted surface\n" +
+                  params_text(s, ["C10", "nu", "clearance", "corner", "h"]), filename)
+
+
+def fig_seal_margin(name, filename):
+    """Each face's peak contact pressure, the sealing margin and the extrusion against p."""
+    data = curve_figure(name, "pressure_steps.csv")
+    if not data:
+        return None
+    s, rows, fig, ax = data
+    p = column(rows, "p")
+    for key, style in (("mating_face_peak", "o-"), ("low_flank_peak", "s--"), ("floor_peak", "^:"),
+                       ("high_flank_peak", "v:")):
+        ax.plot(p, column(rows, key), style, ms=4, mfc="none", label=key.replace("_", " "))
+    ax.plot(p, column(rows, "sealing_margin"), "k-", lw=2, label="sealing margin")
+    ax.plot(p, p, color="0.6", lw=1, label="p")
+    twin = ax.twinx()
+    twin.plot(p, column(rows, "extrusion"), "r-x", label="extrusion into the gap")
+    twin.set_ylabel("extrusion past the flank (length)", color="r")
+    e = s["parameters"].get("clearance", 0)
+    if e:
+        twin.axhline(e / 2, color="r", ls="--", lw=0.8, label="half the clearance")
+    twin.legend(fontsize=8, loc="lower right")
+    return finish(fig, ax, "fluid pressure p", "peak contact pressure, margin (stress unit)",
+                  "O-ring seal: contact pressures, sealing margin and extrusion against p\n" +
+                  params_text(s, ["C10", "nu", "clearance", "corner"]), filename)
+
+
+def fig_seal_deformed(name, filename):
+    """The deformed ring at the last step, its wetted surface and the rigid faces with the gap."""
+    s = summary(name)
+    steps = sorted(f for f in os.listdir(os.path.join(RESULTS, name)) if f.startswith("surface_p")) \
+        if s and os.path.isdir(os.path.join(RESULTS, name)) else []
+    if not steps:
+        return None
+    rows = read_csv(os.path.join(RESULTS, name, steps[-1]))
+    x, y, wet = column(rows, "x"), column(rows, "y"), column(rows, "wetted")
+    contact = column(rows, "contact_pressure")
+    par = s["parameters"]
+    side, e, r = par.get("side", 1.0), par.get("clearance", 0.0), par.get("corner", 0.0)
+    fig, ax = plt.subplots(figsize=(6, 6))
+    closed_x, closed_y = np.append(x, x[0]), np.append(y, y[0])
+    ax.plot(closed_x, closed_y, "k-", lw=1, label="deformed ring")
+    ax.plot(np.where(wet > 0, x, np.nan), np.where(wet > 0, y, np.nan), "b-", lw=3, label="wetted")
+    pressed = contact > 1e-6 * max(contact.max(), 1e-300)
+    ax.plot(x[pressed], y[pressed], "o", color="darkorange", ms=3, label="in contact")
+    t = np.linspace(0, np.pi / 2, 30)
+    flank_x = [-0.15 * side, -r] + list(-r + r * np.sin(t)) + [0, 0]
+    flank_y = [side - e, side - e] + list(side - e - r + r * np.cos(t)) + [side - e - r, 0]
+    ax.plot(flank_x, flank_y, color="0.3", lw=2.5, label="groove (floor, flanks) and mating face")
+    ax.plot([0, side], [0, 0], color="0.3", lw=2.5)
+    ax.plot([side, side], [0, side], color="0.3", lw=2.5)
+    ax.plot([-0.15 * side, side], [side, side], color="0.3", lw=2.5)
+    ax.annotate("fluid in", (side, 0), (0.75 * side, -0.1 * side), arrowprops=dict(arrowstyle="->"), fontsize=9)
+    ax.annotate("gap", (-0.05 * side, side - e / 2), (-0.15 * side, 1.08 * side), arrowprops=dict(arrowstyle="->"),
+                fontsize=9)
+    ax.set_aspect("equal")
+    ax.set_xlim(-0.2 * side, 1.1 * side)
+    ax.set_ylim(-0.15 * side, 1.15 * side)
+    res = s["results"]
+    p = res.get("fluid_pressure", {}).get("computed", 0)
+    return finish(fig, ax, "x", "y", f"O-ring seal at p = {p:g}: the wetted surface and the contacts\n" +
+                  params_text(s, ["C10", "nu", "clearance", "corner"]), filename)
+
+
 def convergence_runs(case):
     folder = os.path.join(RESULTS, "convergence")
     runs = []
@@ -668,6 +756,18 @@ def sections():
             lambda: fig_oring_torus("oring_torus", "oring_plates", "oring_torus_force.png"),
             lambda: fig_deformed("oring_plates", "oring_plates_deformed.png",
                                  "O-ring between plates at c = 0.3 (quarter): von Mises stress", [hline(plate_y, "rigid plate")])]),
+        ("O-ring seal under fluid pressure (pressure penetration)", ["seal"],
+         "The ring of the groove above, squeezed, then a fluid from the corner where the high-pressure flank "
+         "meets the floor, up to 2 G. The fluid wets the free surface it fills and follows each contact while "
+         "the contact pressure at its front is below p (pressure penetration): it gets under the floor and the "
+         "high-pressure flank, which the ring leaves, and stops at the mating face and the low-pressure flank, "
+         "where the ring is pushed into the corner at the clearance gap. There the peak contact pressure rises "
+         "with p (self-sealing), the sealing margin stays positive, and the ring starts to extrude into the gap. "
+         "Every step balances (contact, the rotation row and the fluid's follower force) to round-off; the "
+         "fluid's load is exact on homogeneous states (tests/fluid_pressure_check.edp, docs/rubber.md).", [
+            lambda: fig_seal_pressure("seal", "seal_contact_pressure.png"),
+            lambda: fig_seal_margin("seal", "seal_margin.png"),
+            lambda: fig_seal_deformed("seal", "seal_deformed.png")]),
         ("Rubber block pushed onto a wavy floor (displacement control)", ["platen_block"],
          "A Neo-Hookean block bonded to a rigid platen that moves down, resting on a rigid sinusoidal floor (a "
          "spline). Prescribed displacements reach each step through a linear predictor, so the block takes four "
@@ -765,6 +865,7 @@ HEADLINES = [
     ("Large sliding", "Large sliding", [("sliding_disc", "sideways_force_ratio")]),
     ("Clamped square", "Clamped square", [("clamped_square", "contact_force")]),
     ("O-ring gasket", "O-ring gasket", [("oring_plates", "force_c0.2"), ("oring_groove", "floor_wall_symmetry_rel_error")]),
+    ("O-ring seal under fluid", "O-ring seal under fluid pressure", [("seal", "sealing_margin"), ("seal", "leaked")]),
     ("Rubber block pushed", "Block on a wavy floor", [("platen_block", "platen_force")]),
     ("3D rubber contact", "Indentation, axi and 3D", [("indentation_axi", "force_small_depth"), ("indentation_3d", "force_small_depth")]),
     ("Rubber at and near incompressibility", "Incompressible rubber", [("rivlin_tube", "outer_radius"), ("hertz_plane_nu0.4999", "a")]),

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from typing import Optional
 
 # body size of each benchmark (penetration bounds are 1e-10 of it)
-BODY_SIZE = {"indentation": 10.0, "sliding_disc": 3.0, "cylinder": 1.0, "cube": 1.0, "hertz": 1.0, "clamped_square": 1.0, "oring": 0.52, "platen_block": 0.5, "rivlin_tube": 1.0}
+BODY_SIZE = {"indentation": 10.0, "sliding_disc": 3.0, "cylinder": 1.0, "cube": 1.0, "hertz": 1.0, "clamped_square": 1.0, "oring": 0.52, "seal": 0.52, "platen_block": 0.5, "rivlin_tube": 1.0}
 
 
 @dataclass(frozen=True)
@@ -121,6 +121,13 @@ _add(["oring_torus"], ["force_c0.1", "force_c0.2", "force_c0.3"],
      Check("info", note="Lindley's empirical law; the free torus meets it to 0.4 % at c = 0.2 (docs/benchmarks/oring.md)"))
 _add(["oring_groove"], ["floor_ceiling_balance_rel_error", "walls_balance_rel_error", "floor_wall_symmetry_rel_error"],
      Check("balance", 1e-8, "value", note="opposite faces balance; the problem is symmetric about y = x"))
+_add(["seal"], ["steps_force_balance_rel_error", "force_balance_rel_error"],
+     Check("balance", 1e-10, "value", note="contact forces, the rotation row and the fluid's follower force, at every step"))
+_add(["seal"], ["sealing_margin"],
+     Check("balance", None, "positive", note="self-sealing: the weaker leak path's peak contact pressure exceeds p"))
+_add(["seal"], ["leaked"], Check("balance", 0, "value", note="the fluid does not get across: the ring seals"))
+_add(["seal"], ["mating_face_peak_slope"],
+     Check("info", note="d(peak)/dp: 1.13; a confined nearly incompressible ring passes p on to its contacts (slope 1)"))
 
 _add(["indentation_axi"], ["force_small_depth"],
      Check("analytic", 2e-2, note="Hertz at the first step's depth 0.02 R: finite strain and the block's size -0.4 %, "

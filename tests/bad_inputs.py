@@ -18,6 +18,7 @@ FLANGE, SLIDING = "benchmarks/oring_flange.edp", "benchmarks/sliding_disc.edp"
 INDENTATION, CATTANEO, BAR = "benchmarks/indentation.edp", "benchmarks/cattaneo.edp", "benchmarks/bar_impact.edp"
 PATCH, SPHERE_IMPACT, BARS = "benchmarks/patch_test.edp", "benchmarks/sphere_impact.edp", "benchmarks/bars_head_on.edp"
 DISCS, MINDLIN = "benchmarks/discs_head_on.edp", "benchmarks/mindlin_sphere.edp"
+SEAL = "benchmarks/seal.edp"
 
 # (driver, arguments ({tmp} is a scratch folder holding the files of make_files), the word the
 # error line must contain)
@@ -144,6 +145,11 @@ CASES = [
     (ORING, ["-nu", "0.5", "-volumetric", "penalty"], "-nu"),
     (ORING, ["-cmax", "1"], "-cmax"),
     (ORING, ["-side", "0.5"], "-side"),
+    (SEAL, ["-pressure", "-1"], "-pressure"),
+    (SEAL, ["-pressure", "30"], "-pressure"),
+    (SEAL, ["-clearance", "0.5"], "-clearance"),
+    (SEAL, ["-corner", "0.96"], "-corner"),
+    (SEAL, ["-dim", "axi"], "-dim"),
     (ORING, ["-h", "1"], "-h"),
     (PLATEN, ["-nu", "0.5"], "-nu"),
     (TUBE, ["-inner", "0.9"], "-inner"),

@@ -133,3 +133,56 @@ def test_fluid_errors():
         errors = [l for l in output.splitlines() if l.startswith("error:")]
         check(f"fluid: {name} refused with one line",
               code == 2 and len(errors) == 1 and words in errors[0], output[-300:])
+
+
+SEAL = "benchmarks/seal.edp"
+COARSE = ["-h", "0.052"]   # R/10: the coarse ring the tests can afford
+
+
+def test_seal_reproduces_oring():
+    """With no fluid, no clearance and a sharp flank, the seal is oring.edp -case groove: the same
+    ring, faces, motion and rotation row, so its face forces are the same to round-off."""
+    seal = run_summary("seal without fluid", SEAL, COARSE + ["-squeezesteps", "4", "-pressure", "0",
+                                                             "-clearance", "0", "-corner", "0"])
+    ring = run_summary("oring groove (coarse)", "benchmarks/oring.edp", COARSE + ["-case", "groove", "-steps", "4"])
+    if seal is None or ring is None:
+        return
+    pairs = (("floor_force", "floor_force"), ("low_flank_force", "wall_force"),
+             ("mating_face_force", "ceiling_force"), ("high_flank_force", "opposite_wall_force"))
+    for mine, theirs in pairs:
+        a, b = seal["results"][mine]["computed"], ring["results"][theirs]["computed"]
+        check(f"seal without fluid: {mine} = oring's {theirs} to round-off (1e-12)",
+              abs(a - b) <= 1e-12 * abs(b), f"{a!r} vs {b!r}")
+
+
+def test_seal_pressure():
+    """The O-ring under a fluid from the high-pressure corner (coarse ring, p to 2 G in 5 steps):
+    every step balances (contact forces, the rotation row and the fluid's force), nothing
+    penetrates, every front holds at a contact pressure >= p, the fluid does not get across: the
+    ring is pushed into the corner at the gap and the peak pressure on the mating face rises with p
+    at every step (self-sealing: the sealing margin stays > 0), the extrusion into the gap never
+    shrinks, and the rotation row carries little of the load."""
+    label = "seal p = 2 G"
+    s = run_summary(label, SEAL, COARSE + ["-pressure", "5", "-steps", "5"])
+    if s is None:
+        return
+    r = s["results"]
+    b = r["steps_force_balance_rel_error"]["computed"]
+    check(f"{label}: every step balances to 1e-10 (measured 1.1e-13)", b <= 1e-10, f"{b:.1e}")
+    pen = r["max_penetration"]["computed"]
+    check(f"{label}: penetration <= 1e-10 R", pen <= 1e-10 * 0.52, f"{pen:.1e}")
+    f = r["front_pressure_ratio_min"]["computed"]
+    check(f"{label}: every front holds at a contact pressure >= p", f >= FRONT, f"{f:.6g}")
+    check(f"{label}: the fluid does not get across", r["leaked"]["computed"] == 0)
+    rows = list(csv.DictReader(open(os.path.join(out(label), "pressure_steps.csv"))))
+    check(f"{label}: one row per pressure step", len(rows) == 5, str(len(rows)))
+    peaks = [float(row["mating_face_peak"]) for row in rows]
+    check(f"{label}: the mating face's peak pressure rises at every step",
+          all(b > a for a, b in zip(peaks, peaks[1:])), str([round(p, 3) for p in peaks]))
+    margins = [float(row["sealing_margin"]) for row in rows]
+    check(f"{label}: the sealing margin stays > 0", min(margins) > 0, str([round(m, 3) for m in margins]))
+    pushed = [float(row["extrusion"]) for row in rows]
+    check(f"{label}: the extrusion never shrinks (to 1e-9 R)",
+          all(b >= a - 1e-9 * 0.52 for a, b in zip(pushed, pushed[1:])), str(pushed))
+    tie = max(float(row["tie_force"]) for row in rows)
+    check(f"{label}: the rotation row carries < 1 % of the load (measured 8.9e-4)", tie < 1e-2, f"{tie:.1e}")
