@@ -25,6 +25,8 @@ BENCHMARKS = [
     ("oring_plates", "benchmarks/oring.edp", ["-case", "plates"]),
     ("oring_torus", "benchmarks/oring_torus.edp", []),
     ("seal", "benchmarks/seal.edp", []),
+    ("gasket", "benchmarks/gasket.edp", []),
+    ("gasket_compressible", "benchmarks/gasket.edp", ["-nu", "0.3", "-pressure", "4", "-steps", "4"]),
     ("platen_block", "benchmarks/platen_block.edp", []),
     ("cube_2d_mooney_incompressible", "benchmarks/cube.edp", ["-material", "mooney", "-dim", "2", "-nu", "0.5"]),
     ("cube_3d_neohookean_incompressible", "benchmarks/cube.edp", ["-material", "neohookean", "-dim", "3", "-n", "3", "-nu", "0.5"]),

@@ -449,8 +449,9 @@ def fig_oring_groove(name, filename):
                   "O-ring in the closing groove: face forces\n" + params_text(s, ["C10", "nu", "R", "gap", "side"]), filename)
 
 
-def fig_seal_pressure(name, filename):
-    """The contact pressure along the ring's surface at several fluid pressures, the wetted part
+def fig_seal_pressure(name, filename, title="O-ring seal", along="angle_deg",
+                      xlabel="angle on the ring about its centre (degrees; fluid enters at -45, gap at 135)"):
+    """The contact pressure along the sealing surface at several fluid pressures, the wetted part
     drawn at p: the fluid follows the contacts up to the fronts."""
     s = summary(name)
     steps = sorted(f for f in os.listdir(os.path.join(RESULTS, name)) if f.startswith("surface_p")) \
@@ -462,18 +463,18 @@ def fig_seal_pressure(name, filename):
     chosen = [steps[0]] + [later[round(i * (len(later) - 1) / 3)] for i in range(4)] if len(later) >= 4 else steps
     for i, f in enumerate(chosen):
         rows = read_csv(os.path.join(RESULTS, name, f))
-        angle, contact = column(rows, "angle_deg"), column(rows, "contact_pressure")
+        angle, contact = column(rows, along), column(rows, "contact_pressure")
         wet, fluid = column(rows, "wetted"), column(rows, "fluid_pressure")
         p = fluid.max() if wet.any() else 0.0
         line, = ax.plot(angle, contact, "-", lw=1.2, label=f"p = {p:g}: contact")
         if wet.any():
-            ax.plot(np.where(wet > 0, angle, np.nan), np.where(wet > 0, fluid, np.nan), ":", lw=2.5,
-                    color=line.get_color(), label=f"p = {p:g}: wetted")
-    ax.set_xticks(range(-180, 181, 45))
-    return finish(fig, ax, "angle on the ring about its centre (degrees; fluid enters at -45, gap at 135)",
-                  "pressure on the ring (stress unit)",
-                  "O-ring seal: contact pressure and the wetted surface\n" +
-                  params_text(s, ["C10", "nu", "clearance", "corner", "h"]), filename)
+            ax.plot(np.where(wet > 0, angle, np.nan), np.where(wet > 0, fluid, np.nan), ":", lw=2.5, marker="o",
+                    ms=3, color=line.get_color(), label=f"p = {p:g}: wetted")
+    if along == "angle_deg":
+        ax.set_xticks(range(-180, 181, 45))
+    return finish(fig, ax, xlabel, "pressure on the surface (stress unit)",
+                  title + ": contact pressure and the wetted surface\n" +
+                  params_text(s, ["C10", "nu", "clearance", "corner", "W", "T", "squeeze", "h"]), filename)
 
 
 def fig_seal_margin(name, filename):
@@ -756,7 +757,7 @@ def sections():
             lambda: fig_oring_torus("oring_torus", "oring_plates", "oring_torus_force.png"),
             lambda: fig_deformed("oring_plates", "oring_plates_deformed.png",
                                  "O-ring between plates at c = 0.3 (quarter): von Mises stress", [hline(plate_y, "rigid plate")])]),
-        ("O-ring seal under fluid pressure (pressure penetration)", ["seal"],
+        ("O-ring seal under fluid pressure (pressure penetration)", ["seal", "gasket", "gasket_compressible"],
          "The ring of the groove above, squeezed, then a fluid from the corner where the high-pressure flank "
          "meets the floor, up to 2 G. The fluid wets the free surface it fills and follows each contact while "
          "the contact pressure at its front is below p (pressure penetration): it gets under the floor and the "
@@ -764,10 +765,15 @@ def sections():
          "where the ring is pushed into the corner at the clearance gap. There the peak contact pressure rises "
          "with p (self-sealing), the sealing margin stays positive, and the ring starts to extrude into the gap. "
          "Every step balances (contact, the rotation row and the fluid's follower force) to round-off; the "
-         "fluid's load is exact on homogeneous states (tests/fluid_pressure_check.edp, docs/rubber.md).", [
+         "fluid's load is exact on homogeneous states (tests/fluid_pressure_check.edp, docs/rubber.md). A flat "
+         "gasket, a strip bonded to one plate and squeezed by the other, is the seal that can leak: nearly "
+         "incompressible (W / T = 2) it holds to 5 G, its contacts rising with p; at nu = 0.3 it holds 1 G and leaks "
+         "at 2 G, 5.5 times its squeezed peak contact pressure (the elastic leak criterion is a lower bound).", [
             lambda: fig_seal_pressure("seal", "seal_contact_pressure.png"),
             lambda: fig_seal_margin("seal", "seal_margin.png"),
-            lambda: fig_seal_deformed("seal", "seal_deformed.png")]),
+            lambda: fig_seal_deformed("seal", "seal_deformed.png"),
+            lambda: fig_seal_pressure("gasket_compressible", "gasket_contact_pressure.png", "Flat gasket (nu = 0.3)", "x_reference",
+                                      "x along the gasket's top, reference (fluid from x = 0; it leaks at the right flank, x = W)")]),
         ("Rubber block pushed onto a wavy floor (displacement control)", ["platen_block"],
          "A Neo-Hookean block bonded to a rigid platen that moves down, resting on a rigid sinusoidal floor (a "
          "spline). Prescribed displacements reach each step through a linear predictor, so the block takes four "

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from typing import Optional
 
 # body size of each benchmark (penetration bounds are 1e-10 of it)
-BODY_SIZE = {"indentation": 10.0, "sliding_disc": 3.0, "cylinder": 1.0, "cube": 1.0, "hertz": 1.0, "clamped_square": 1.0, "oring": 0.52, "seal": 0.52, "platen_block": 0.5, "rivlin_tube": 1.0}
+BODY_SIZE = {"indentation": 10.0, "sliding_disc": 3.0, "cylinder": 1.0, "cube": 1.0, "hertz": 1.0, "clamped_square": 1.0, "oring": 0.52, "seal": 0.52, "gasket": 1.0, "platen_block": 0.5, "rivlin_tube": 1.0}
 
 
 @dataclass(frozen=True)
@@ -126,6 +126,11 @@ _add(["seal"], ["steps_force_balance_rel_error", "force_balance_rel_error"],
 _add(["seal"], ["sealing_margin"],
      Check("balance", None, "positive", note="self-sealing: the weaker leak path's peak contact pressure exceeds p"))
 _add(["seal"], ["leaked"], Check("balance", 0, "value", note="the fluid does not get across: the ring seals"))
+_add(["gasket", "gasket_compressible"], ["steps_force_balance_rel_error"],
+     Check("balance", 1e-8, "value", note="contact forces, the bond's reactions and the fluid's follower force, every step held"))
+_add(["gasket"], ["leaked"], Check("balance", 0, "value", note="the nearly incompressible strip holds to 5 G"))
+_add(["gasket_compressible"], ["leak_over_squeeze_peak"],
+     Check("info", note="the elastic leak criterion (leak at the squeezed peak contact pressure) is a lower bound"))
 _add(["seal"], ["mating_face_peak_slope"],
      Check("info", note="d(peak)/dp: 1.13; a confined nearly incompressible ring passes p on to its contacts (slope 1)"))
 

@@ -18,7 +18,7 @@ FLANGE, SLIDING = "benchmarks/oring_flange.edp", "benchmarks/sliding_disc.edp"
 INDENTATION, CATTANEO, BAR = "benchmarks/indentation.edp", "benchmarks/cattaneo.edp", "benchmarks/bar_impact.edp"
 PATCH, SPHERE_IMPACT, BARS = "benchmarks/patch_test.edp", "benchmarks/sphere_impact.edp", "benchmarks/bars_head_on.edp"
 DISCS, MINDLIN = "benchmarks/discs_head_on.edp", "benchmarks/mindlin_sphere.edp"
-SEAL = "benchmarks/seal.edp"
+SEAL, GASKET = "benchmarks/seal.edp", "benchmarks/gasket.edp"
 
 # (driver, arguments ({tmp} is a scratch folder holding the files of make_files), the word the
 # error line must contain)
@@ -150,6 +150,9 @@ CASES = [
     (SEAL, ["-clearance", "0.5"], "-clearance"),
     (SEAL, ["-corner", "0.96"], "-corner"),
     (SEAL, ["-dim", "axi"], "-dim"),
+    (GASKET, ["-pressure", "-1"], "-pressure"),
+    (GASKET, ["-squeeze", "0.6"], "-squeeze"),
+    (GASKET, ["-W", "1e6"], "-h"),
     (ORING, ["-h", "1"], "-h"),
     (PLATEN, ["-nu", "0.5"], "-nu"),
     (TUBE, ["-inner", "0.9"], "-inner"),

@@ -186,3 +186,34 @@ def test_seal_pressure():
           all(b >= a - 1e-9 * 0.52 for a, b in zip(pushed, pushed[1:])), str(pushed))
     tie = max(float(row["tie_force"]) for row in rows)
     check(f"{label}: the rotation row carries < 1 % of the load (measured 8.9e-4)", tie < 1e-2, f"{tie:.1e}")
+
+
+def test_gasket_leak():
+    """The flat gasket that leaks: a compressible strip (nu = 0.3, W / T = 2) bonded to one plate,
+    squeezed 10 % by the other, the fluid from its left flank to 4 G in 4 steps. It holds at 1 G
+    and leaks at 2 G: the front reaches the right flank, the run stops there with exit 0 and the
+    leak reported; every step it held balances and its front held at >= p. The same strip nearly
+    incompressible (nu = 0.499) holds to 5 G: its contacts rise with p."""
+    label = "gasket leak"
+    s = run_summary(label, "benchmarks/gasket.edp", ["-W", "2", "-nu", "0.3", "-pressure", "4", "-steps", "4"])
+    if s is not None:
+        r = s["results"]
+        check(f"{label}: it leaks, at 2 G, after holding 1 G",
+              r["leaked"]["computed"] == 1 and r["leak_pressure"]["computed"] == 2
+              and r["held_pressure"]["computed"] == 1, str({k: r[k]["computed"] for k in ("leaked", "pressure_steps_done")}))
+        check(f"{label}: the leak is above the squeezed strip's peak contact pressure (the elastic criterion)",
+              r["leak_over_squeeze_peak"]["computed"] > 1, f"{r['leak_over_squeeze_peak']['computed']:.3f}")
+        f = r["front_pressure_ratio_min"]["computed"]
+        check(f"{label}: while it held, every front held at a contact pressure >= p", f >= FRONT, f"{f:.6g}")
+        b = r["steps_force_balance_rel_error"]["computed"]
+        check(f"{label}: every step balances to 1e-8 (the run's own bound; measured 2.3e-10)", b <= 1e-8, f"{b:.1e}")
+        rows = list(csv.DictReader(open(os.path.join(out(label), "pressure_steps.csv"))))
+        check(f"{label}: the steps stop at the leak", [row["leaked"] for row in rows] == ["0", "1"], str(len(rows)))
+    label = "gasket holds"
+    s = run_summary(label, "benchmarks/gasket.edp", ["-W", "2"])
+    if s is not None:
+        r = s["results"]
+        check(f"{label}: the nearly incompressible strip holds to 5 G", r["leaked"]["computed"] == 0
+              and r["pressure_steps_done"]["computed"] == 10)
+        f = r["front_pressure_ratio_min"]["computed"]
+        check(f"{label}: every front holds at a contact pressure >= p", f >= FRONT, f"{f:.6g}")
