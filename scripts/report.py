@@ -449,13 +449,18 @@ def fig_oring_groove(name, filename):
                   "O-ring in the closing groove: face forces\n" + params_text(s, ["C10", "nu", "R", "gap", "side"]), filename)
 
 
+def seal_surfaces(name):
+    """A seal run's surface files (surface_p00.csv, ...: one per step), in step order."""
+    folder = os.path.join(RESULTS, name)
+    return sorted(f for f in os.listdir(folder) if f.startswith("surface_p")) if os.path.isdir(folder) else []
+
+
 def fig_seal_pressure(name, filename, title="O-ring seal", along="angle_deg",
                       xlabel="angle on the ring about its centre (degrees; fluid enters at -45, gap at 135)"):
     """The contact pressure along the sealing surface at several fluid pressures, the wetted part
     drawn at p: the fluid follows the contacts up to the fronts."""
     s = summary(name)
-    steps = sorted(f for f in os.listdir(os.path.join(RESULTS, name)) if f.startswith("surface_p")) \
-        if s and os.path.isdir(os.path.join(RESULTS, name)) else []
+    steps = seal_surfaces(name) if s else []
     if not steps:
         return None
     fig, ax = plt.subplots(figsize=(7.5, 4.2))
@@ -504,8 +509,7 @@ def fig_seal_margin(name, filename):
 def fig_seal_deformed(name, filename):
     """The deformed ring at the last step, its wetted surface and the rigid faces with the gap."""
     s = summary(name)
-    steps = sorted(f for f in os.listdir(os.path.join(RESULTS, name)) if f.startswith("surface_p")) \
-        if s and os.path.isdir(os.path.join(RESULTS, name)) else []
+    steps = seal_surfaces(name) if s else []
     if not steps:
         return None
     rows = read_csv(os.path.join(RESULTS, name, steps[-1]))
