@@ -15,21 +15,6 @@ from freefem import share_cores
 share_cores()
 
 
-# The longest tests first, longest first (their order in a make test run on the 2-core machine):
-# xdist hands tests out in collection order, so a long one collected late ran alone at the end
-# (test_rubber's cube grid, 166 s, started after most of the rest). Only the order changes.
-LONGEST_FIRST = ["test_mindlin_sphere", "test_cube_homogeneous_default_form", "test_sphere_impact",
-                 "test_sphere_impact_rubber_neohookean", "test_bad_input", "test_spheres_head_on_3d",
-                 "test_cattaneo_rigid", "test_condensed_path", "test_indentation",
-                 "test_sphere_impact_3d_rubber_neohookean", "test_docs_numbers", "test_sphere_impact_3d",
-                 "test_oring_torus"]
-
-
-def pytest_collection_modifyitems(items):
-    rank = {name: i for i, name in enumerate(LONGEST_FIRST)}
-    items.sort(key=lambda item: rank.get(item.name, len(rank)))   # stable: the rest keep their order
-
-
 @pytest.hookimpl(hookwrapper=True)
 def pytest_pyfunc_call(pyfuncitem):
     helpers.CHECKS.clear()
