@@ -8,7 +8,9 @@
 // writeVtu(file, Th, U, cellData, names): Th a 2D mesh or a mesh3; U the displacement's dof vector
 // in the numbering of [P1, P1] or [P1, P1, P1] (dof d v + c), written as the point field
 // "displacement" with 3 components (0 out of plane); cellData the P0 arrays one after the other
-// (nt values each), written as cell fields named by the space-separated `names`. The layout is
+// (nt values each), written as cell fields named by the space-separated `names`; a name written
+// "point:NAME" is a point field NAME instead, its nv values after all the cell fields' (the fluid
+// pressure on a seal's wetted surface lives on vertices, not elements). The layout is
 // savevtk's: XML UnstructuredGrid, inline base64 "binary" arrays each led by its 4-byte length,
 // Float32 values, the element cells only (triangles, VTK type 5, or tetrahedra, type 10).
 // scripts/vtu.py reads it for the report's figures. Returns the number of cells, or minus the errno
@@ -65,13 +67,18 @@ void dataArray(FILE *f, const char *type, const std::string &name, int component
 long writeFile(const std::string &file, long nv, long nt, int d, const std::vector<float> &points,
            const std::vector<int32_t> &connectivity, const KN<double> &U, const KN<double> &cellData,
            const std::string &names) {
-  std::vector<std::string> fields;
+  std::vector<std::string> fields, pointFields;
   std::istringstream words(names);
-  for (std::string w; words >> w;) fields.push_back(w);
-  if (U.N() != d * nv || cellData.N() != long(fields.size()) * nt) {
+  const std::string pointTag = "point:";
+  for (std::string w; words >> w;) {
+    if (w.compare(0, pointTag.size(), pointTag) == 0) pointFields.push_back(w.substr(pointTag.size()));
+    else fields.push_back(w);
+  }
+  long cellValues = long(fields.size()) * nt;
+  if (U.N() != d * nv || cellData.N() != cellValues + long(pointFields.size()) * nv) {
     std::cout << "error: writeVtu: " << U.N() << " displacement values for " << nv << " vertices in " << d
-              << "D, or " << cellData.N() << " cell values for " << fields.size() << " fields on " << nt << " elements"
-              << std::endl;
+              << "D, or " << cellData.N() << " field values for " << fields.size() << " cell fields on " << nt
+              << " elements and " << pointFields.size() << " point fields on " << nv << " vertices" << std::endl;
     std::exit(2);
   }
   FILE *f = std::fopen(file.c_str(), "w");
@@ -91,6 +98,11 @@ long writeFile(const std::string &file, long nv, long nt, int d, const std::vect
   for (long v = 0; v < nv; v++)
     for (int c = 0; c < d; c++) displacement[3 * v + c] = float(U[d * v + c]);
   dataArray(f, "Float32", "displacement", 3, displacement);
+  std::vector<float> pointValues(nv);
+  for (size_t m = 0; m < pointFields.size(); m++) {
+    for (long v = 0; v < nv; v++) pointValues[v] = float(cellData[cellValues + long(m) * nv + v]);
+    dataArray(f, "Float32", pointFields[m], 1, pointValues);
+  }
   std::fprintf(f, "</PointData>\n<CellData>\n");
   std::vector<float> values(nt);
   for (size_t m = 0; m < fields.size(); m++) {

@@ -506,6 +506,30 @@ def fig_seal_margin(name, filename):
                   params_text(s, ["C10", "nu", "clearance", "corner"]), filename)
 
 
+def fig_seal_extrusion(names, filename, label_key, title):
+    """The extrusion into the gap against p for several runs (clearances, or meshes), each with half
+    its clearance dashed and the pressure where it is reached (half_clearance_pressure) marked."""
+    runs = [(n, summary(n), read_csv(os.path.join(RESULTS, n, "pressure_steps.csv"))) for n in names]
+    runs = [(n, s, rows) for n, s, rows in runs if s and rows]
+    if not runs:
+        return None
+    fig, ax = plt.subplots(figsize=(7, 4.2))
+    for n, s, rows in runs:
+        value = s["parameters"].get(label_key)
+        text = f"{label_key} = {value:.4g}" if label_key != "h" else f"h = R/{0.52 / value:.0f}"
+        line, = ax.plot(column(rows, "p_over_G"), column(rows, "extrusion"), "o-", ms=3, label=text)
+        e = s["parameters"].get("clearance", 0)
+        ax.axhline(e / 2, color=line.get_color(), ls="--", lw=0.8)
+        reached = s["results"].get("half_clearance_pressure", {}).get("computed")
+        if reached:
+            G = 2 * s["parameters"].get("C10", 1.2345)
+            ax.plot([reached / G], [e / 2], "*", ms=12, color=line.get_color(),
+                    label=f"e / 2 reached at {reached / G:.2f} G")
+    return finish(fig, ax, "fluid pressure p / G", "extrusion past the flank's plane (length)",
+                  title + "\n(dashed: half the clearance e; " + params_text(runs[0][1], ["C10", "nu", "corner"]) + ")",
+                  filename)
+
+
 def fig_seal_deformed(name, filename):
     """The deformed ring at the last step, its wetted surface and the rigid faces with the gap."""
     s = summary(name)
@@ -516,6 +540,8 @@ def fig_seal_deformed(name, filename):
     x, y, wet = column(rows, "x"), column(rows, "y"), column(rows, "wetted")
     contact = column(rows, "contact_pressure")
     par = s["parameters"]
+    if par.get("dim") == "axi":   # the piston seal's (r, z) back to the plane groove's frame (seal.edp)
+        x, y = y, x - par.get("radius", 5.0)
     side, e, r = par.get("side", 1.0), par.get("clearance", 0.0), par.get("corner", 0.0)
     fig, ax = plt.subplots(figsize=(6, 6))
     closed_x, closed_y = np.append(x, x[0]), np.append(y, y[0])
@@ -538,8 +564,10 @@ def fig_seal_deformed(name, filename):
     ax.set_ylim(-0.15 * side, 1.15 * side)
     res = s["results"]
     p = res.get("fluid_pressure", {}).get("computed", 0)
-    return finish(fig, ax, "x", "y", f"O-ring seal at p = {p:g}: the wetted surface and the contacts\n" +
-                  params_text(s, ["C10", "nu", "clearance", "corner"]), filename)
+    axi = par.get("dim") == "axi"
+    return finish(fig, ax, "z" if axi else "x", "r - radius" if axi else "y",
+                  f"O-ring {'piston ' if axi else ''}seal at p = {p:g}: the wetted surface and the contacts\n" +
+                  params_text(s, ["C10", "nu", "clearance", "corner"] + (["radius"] if axi else [])), filename)
 
 
 def convergence_runs(case):
@@ -761,13 +789,18 @@ def sections():
             lambda: fig_oring_torus("oring_torus", "oring_plates", "oring_torus_force.png"),
             lambda: fig_deformed("oring_plates", "oring_plates_deformed.png",
                                  "O-ring between plates at c = 0.3 (quarter): von Mises stress", [hline(plate_y, "rigid plate")])]),
-        ("O-ring seal under fluid pressure (pressure penetration)", ["seal", "gasket", "gasket_compressible"],
+        ("O-ring seal under fluid pressure (pressure penetration)",
+         ["seal", "seal_axisymmetric", "seal_extrusion_e0.025", "seal_extrusion_e0.05", "seal_extrusion_e0.1",
+          "seal_extrusion_e0.1_R16", "seal_extrusion_e0.1_R36", "gasket", "gasket_compressible"],
          "The ring of the groove above, squeezed, then a fluid from the corner where the high-pressure flank "
          "meets the floor, up to 2 G. The fluid wets the free surface it fills and follows each contact while "
          "the contact pressure at its front is below p (pressure penetration): it gets under the floor and the "
          "high-pressure flank, which the ring leaves, and stops at the mating face and the low-pressure flank, "
          "where the ring is pushed into the corner at the clearance gap. There the peak contact pressure rises "
-         "with p (self-sealing), the sealing margin stays positive, and the ring starts to extrude into the gap. "
+         "with p (self-sealing), the sealing margin stays positive, and the ring starts to extrude into the gap: "
+         "the pressure at which it has extruded half the clearance falls as the clearance opens (three clearances, "
+         "and the widest on three meshes). As a piston seal (axisymmetric) the fluid gets under the groove's "
+         "floor only and pushes the ring onto the bore; squeezed, it tends to plane strain at first order in R / r. "
          "Every step balances (contact, the rotation row and the fluid's follower force) to round-off; the "
          "fluid's load is exact on homogeneous states (tests/fluid_pressure_check.edp, docs/rubber.md). A flat "
          "gasket, a strip bonded to one plate and squeezed by the other, is the seal that can leak: nearly "
@@ -776,6 +809,11 @@ def sections():
             lambda: fig_seal_pressure("seal", "seal_contact_pressure.png"),
             lambda: fig_seal_margin("seal", "seal_margin.png"),
             lambda: fig_seal_deformed("seal", "seal_deformed.png"),
+            lambda: fig_seal_extrusion(["seal_extrusion_e0.025", "seal_extrusion_e0.05", "seal_extrusion_e0.1"],
+                                       "seal_extrusion.png", "clearance", "O-ring seal: extrusion into the clearance gap"),
+            lambda: fig_seal_extrusion(["seal_extrusion_e0.1_R16", "seal_extrusion_e0.1", "seal_extrusion_e0.1_R36"],
+                                       "seal_extrusion_mesh.png", "h", "O-ring seal, e = 0.1: the extrusion on three meshes"),
+            lambda: fig_seal_deformed("seal_axisymmetric", "seal_axisymmetric_deformed.png"),
             lambda: fig_seal_pressure("gasket_compressible", "gasket_contact_pressure.png", "Flat gasket (nu = 0.3)", "x_reference",
                                       "x along the gasket's top, reference (fluid from x = 0; it leaks at the right flank, x = W)")]),
         ("Rubber block pushed onto a wavy floor (displacement control)", ["platen_block"],
