@@ -151,6 +151,7 @@ CASES = [
     (SEAL, ["-corner", "0.96"], "-corner"),
     (SEAL, ["-radius", "2"], "-radius"),
     (SEAL, ["-dim", "axi", "-radius", "0"], "-radius"),
+    (SEAL, ["-refine", "0"], "-refine"),
     (GASKET, ["-pressure", "-1"], "-pressure"),
     (GASKET, ["-squeeze", "0.6"], "-squeeze"),
     (GASKET, ["-W", "1e6"], "-h"),

@@ -156,6 +156,13 @@ def test_seal_without_fluid():
             a, b = seal["results"][mine]["computed"], ring["results"][theirs]["computed"]
             check(f"seal without fluid: {mine} = oring's {theirs} to round-off (1e-12)",
                   abs(a - b) <= 1e-12 * abs(b), f"{a!r} vs {b!r}")
+    # the ring refined at the gap (-refine 2: 90 to 180 degrees and its mirror image, -90 to 0) keeps
+    # the mesh's symmetry about the diagonal: floor = low-pressure flank, and by balance all four
+    refined = run_summary("seal without fluid refined", SEAL, plane_args + ["-refine", "2"])
+    if refined is not None:
+        forces = [refined["results"][f"{face}_force"]["computed"] for face in ("floor", "low_flank", "mating_face", "high_flank")]
+        check("seal without fluid -refine 2: the four face forces equal to round-off (1e-12): the refined mesh is "
+              "symmetric about the diagonal", max(forces) - min(forces) <= 1e-12 * max(forces), str(forces))
     runs = {r: run_summary(f"seal axi squeeze r{r}", SEAL, plane_args + ["-dim", "axi", "-radius", str(r)])
             for r in (500, 5000)}
     if seal is None or None in runs.values():

@@ -138,8 +138,8 @@ def hertz_study(levels, repeat, full_path_levels, peers):
                "direct_solve_s": solve, "direct_assembly_s": assembly,
                "contact_over_direct_solve": step / solve, "contact_over_assembly_and_solve": step / (solve + assembly),
                "l2_error": s["results"]["pressure_l2_rel_error"]["computed"],
-               "condensed_dofs": s["results"].get("condensed_dofs", {}).get("computed", 0),
-               "condensation_s": s["results"].get("condensation_time_s", {}).get("computed", float("nan")),
+               "condensed_dofs": s.get("solver", {}).get("condensed_dofs", 0),
+               "condensation_s": s.get("solver", {}).get("condensation_time_s", float("nan")),
                "runs": reps}
         if level <= full_path_levels:
             full = measured(f"hertz a/{level} full KKT path", reps, "benchmarks/hertz_plane.edp",
@@ -202,7 +202,7 @@ def hertz_newton_study(levels, repeat):
                "newton_iterations": int(r["newton_iterations"]["computed"]), "newton_solve_s": r["newton_time_s"]["computed"],
                "rel_difference": r["newton_vs_ipopt_rel_difference"]["computed"], "a_error": r["a"]["rel_error"]}
         row["ipopt_over_newton"] = row["ipopt_solve_s"] / row["newton_solve_s"]
-        row["contact_solve"] = "condensed SQP" if "condensed_dofs" in r else "IPOPT, whole problem"
+        row["contact_solve"] = "condensed SQP" if "condensed_dofs" in s.get("solver", {}) else "IPOPT, whole problem"
         full = measured(f"hertz Neo-Hookean a/{level} full", repeat, "benchmarks/hertz_plane.edp",
                         ["-material", "neohookean", "-condense", "no", "-h", repr(A_HERTZ / level)], out_dir + "_full")
         if full:
@@ -275,8 +275,8 @@ def rubber_3d_study(cube_ns, indentation_levels):
                 continue
             s, wall, rss, _ = run
             r = s["results"]
-            row.update({"ndof": s["ndof"], f"{form}_entries": r["condensation_factor_entries"]["computed"],
-                        f"{form}_per_unknown": r["factor_entries_per_unknown"]["computed"], f"{form}_wall_s": wall,
+            row.update({"ndof": s["ndof"], f"{form}_entries": s["solver"]["condensation_factor_entries"],
+                        f"{form}_per_unknown": s["solver"]["factor_entries_per_unknown"], f"{form}_wall_s": wall,
                         f"{form}_rss_mb": rss, f"{form}_w_error": r["w"]["rel_error"]})
         if "penalty_per_unknown" in row and "nodal_per_unknown" in row:
             row["ratio_per_unknown"] = row["nodal_per_unknown"] / row["penalty_per_unknown"]
@@ -294,7 +294,7 @@ def rubber_3d_study(cube_ns, indentation_levels):
                             "iterations": [step["iterations"] for step in s["steps"]],
                             "factorizations": t["factorizations"], "factorization_mean_s": t["factorization_mean"],
                             "total_over_factorization": t["total"] / t["factorization_mean"] if t["factorization_mean"] > 0 else float("nan"),
-                            "per_unknown": r["factor_entries_per_unknown"]["computed"], "force": r["force"]["computed"],
+                            "per_unknown": s["solver"]["factor_entries_per_unknown"], "force": r["force"]["computed"],
                             "force_small_depth_error": r["force_small_depth"]["rel_error"]})
         print(f"indentation 3D R/{level}: {s['ndof']} dofs, {t['factorizations']} factorizations of {t['factorization_mean']:.2f} s, "
               f"wall {wall:.0f} s, RSS {rss:.0f} MB", flush=True)
