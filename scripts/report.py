@@ -76,12 +76,12 @@ def save(fig, filename):
     return filename
 
 
-def finish(fig, ax, xlabel, ylabel, title, filename):
+def finish(fig, ax, xlabel, ylabel, title, filename, legend_at="best"):
     """Labels, title, legend and grid of a one-panel figure, saved under filename."""
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
     ax.set_title(title, fontsize=10)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc=legend_at)
     ax.grid(alpha=0.3, which="both")
     return save(fig, filename)
 
@@ -515,8 +515,11 @@ def fig_seal_extrusion(names, filename, label_key, title):
         return None
     fig, ax = plt.subplots(figsize=(7, 4.2))
     for n, s, rows in runs:
-        value = s["parameters"].get(label_key)
-        text = f"{label_key} = {value:.4g}" if label_key != "h" else f"h = R/{0.52 / value:.0f}"
+        par = s["parameters"]
+        value = par.get(label_key, 1)
+        text = f"{label_key} = {value:.4g}"
+        if label_key == "refine":   # the elements at the gap: h / refine
+            text = f"h = R/{par.get('R', 0.52) / par.get('h', 0.52 / 24):.0f}, R/{value * par.get('R', 0.52) / par.get('h', 0.52 / 24):.0f} at the gap"
         line, = ax.plot(column(rows, "p_over_G"), column(rows, "extrusion"), "o-", ms=3, label=text)
         e = s["parameters"].get("clearance", 0)
         ax.axhline(e / 2, color=line.get_color(), ls="--", lw=0.8)
@@ -527,7 +530,7 @@ def fig_seal_extrusion(names, filename, label_key, title):
                     label=f"e / 2 reached at {reached / G:.2f} G")
     return finish(fig, ax, "fluid pressure p / G", "extrusion past the flank's plane (length)",
                   title + "\n(dashed: half the clearance e; " + params_text(runs[0][1], ["C10", "nu", "corner"]) + ")",
-                  filename)
+                  filename, legend_at="upper left")
 
 
 def fig_seal_deformed(name, filename):
@@ -791,17 +794,19 @@ def sections():
                                  "O-ring between plates at c = 0.3 (quarter): von Mises stress", [hline(plate_y, "rigid plate")])]),
         ("O-ring seal under fluid pressure (pressure penetration)",
          ["seal", "seal_axisymmetric", "seal_extrusion_e0.025", "seal_extrusion_e0.05", "seal_extrusion_e0.1",
-          "seal_extrusion_e0.1_R16", "seal_extrusion_e0.1_R36", "gasket", "gasket_compressible"],
+          "seal_extrusion_e0.15", "seal_extrusion_e0.1_refine1", "seal_extrusion_e0.1_refine4", "gasket", "gasket_compressible"],
          "The ring of the groove above, squeezed, then a fluid from the corner where the high-pressure flank "
          "meets the floor, up to 2 G. The fluid wets the free surface it fills and follows each contact while "
          "the contact pressure at its front is below p (pressure penetration): it gets under the floor and the "
          "high-pressure flank, which the ring leaves, and stops at the mating face and the low-pressure flank, "
          "where the ring is pushed into the corner at the clearance gap. There the peak contact pressure rises "
          "with p (self-sealing), the sealing margin stays positive, and the ring starts to extrude into the gap: "
-         "the pressure at which it has extruded half the clearance falls as the clearance opens (three clearances, "
-         "and the widest on three meshes). As a piston seal (axisymmetric) the fluid gets under the groove's "
+         "the pressure at which it has extruded half the clearance falls as the clearance opens (four clearances, "
+         "the ring refined where it meets the gap; the widest's converges at first order as that refinement doubles). "
+         "As a piston seal (axisymmetric) the fluid gets under the groove's "
          "floor only and pushes the ring onto the bore; squeezed, it tends to plane strain at first order in R / r. "
-         "Every step balances (contact, the rotation row and the fluid's follower force) to round-off; the "
+         "Every step balances (contact, the rotation row and the fluid's follower force), to round-off where the "
+         "condensed SQP solves it and to IPOPT's tolerance where it takes over (6e-11 at most); the "
          "fluid's load is exact on homogeneous states (tests/fluid_pressure_check.edp, docs/rubber.md). A flat "
          "gasket, a strip bonded to one plate and squeezed by the other, is the seal that can leak: nearly "
          "incompressible (W / T = 2) it holds to 5 G, its contacts rising with p; at nu = 0.3 it holds 1 G and leaks "
@@ -809,10 +814,12 @@ def sections():
             lambda: fig_seal_pressure("seal", "seal_contact_pressure.png"),
             lambda: fig_seal_margin("seal", "seal_margin.png"),
             lambda: fig_seal_deformed("seal", "seal_deformed.png"),
-            lambda: fig_seal_extrusion(["seal_extrusion_e0.025", "seal_extrusion_e0.05", "seal_extrusion_e0.1"],
+            lambda: fig_seal_extrusion(["seal_extrusion_e0.025", "seal_extrusion_e0.05", "seal_extrusion_e0.1",
+                                        "seal_extrusion_e0.15"],
                                        "seal_extrusion.png", "clearance", "O-ring seal: extrusion into the clearance gap"),
-            lambda: fig_seal_extrusion(["seal_extrusion_e0.1_R16", "seal_extrusion_e0.1", "seal_extrusion_e0.1_R36"],
-                                       "seal_extrusion_mesh.png", "h", "O-ring seal, e = 0.1: the extrusion on three meshes"),
+            lambda: fig_seal_extrusion(["seal_extrusion_e0.1_refine1", "seal_extrusion_e0.1", "seal_extrusion_e0.1_refine4"],
+                                       "seal_extrusion_mesh.png", "refine",
+                                       "O-ring seal, e = 0.1: the extrusion as the ring is refined at the gap"),
             lambda: fig_seal_deformed("seal_axisymmetric", "seal_axisymmetric_deformed.png"),
             lambda: fig_seal_pressure("gasket_compressible", "gasket_contact_pressure.png", "Flat gasket (nu = 0.3)", "x_reference",
                                       "x along the gasket's top, reference (fluid from x = 0; it leaks at the right flank, x = W)")]),

@@ -122,7 +122,7 @@ _add(["oring_torus"], ["force_c0.1", "force_c0.2", "force_c0.3"],
 _add(["oring_groove"], ["floor_ceiling_balance_rel_error", "walls_balance_rel_error", "floor_wall_symmetry_rel_error"],
      Check("balance", 1e-8, "value", note="opposite faces balance; the problem is symmetric about y = x"))
 SEALS = ["seal", "seal_axisymmetric", "seal_extrusion_e0.025", "seal_extrusion_e0.05", "seal_extrusion_e0.1",
-         "seal_extrusion_e0.1_R16", "seal_extrusion_e0.1_R36"]
+         "seal_extrusion_e0.15", "seal_extrusion_e0.1_refine1", "seal_extrusion_e0.1_refine4"]
 _add(SEALS[:2], ["steps_force_balance_rel_error", "force_balance_rel_error"],
      Check("balance", 1e-10, "value", note="contact forces, the rotation row and the fluid's follower force, at every step"))
 _add(SEALS[2:], ["steps_force_balance_rel_error", "force_balance_rel_error"],
