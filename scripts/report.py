@@ -806,7 +806,7 @@ def sections():
          "As a piston seal (axisymmetric) the fluid gets under the groove's "
          "floor only and pushes the ring onto the bore; squeezed, it tends to plane strain at first order in R / r. "
          "Every step balances (contact, the rotation row and the fluid's follower force), to round-off where the "
-         "condensed SQP solves it and to IPOPT's tolerance where it takes over (6e-11 at most); the "
+         "condensed SQP solves it and to IPOPT's tolerance where it takes over (8e-11 at most); the "
          "fluid's load is exact on homogeneous states (tests/fluid_pressure_check.edp, docs/rubber.md). A flat "
          "gasket, a strip bonded to one plate and squeezed by the other, is the seal that can leak: nearly "
          "incompressible (W / T = 2) it holds to 5 G, its contacts rising with p; at nu = 0.3 it holds 1 G and leaks "
