@@ -13,15 +13,94 @@
 //   launchedProcesses(): the processes mpirun (OpenMPI's OMPI_COMM_WORLD_SIZE) or a PMI launcher
 //     (PMI_SIZE) started, 1 without one: FreeFem++ started N times by mpirun sees N here and 1 in
 //     processCount() (include/core/run.idp refuses it).
+//   holdOutput(), releaseOutput(): the standard output between the two goes to an anonymous file
+//     in memory and is then printed without IPOPT's line 'Using option file "<path>".' and its
+//     blank lines. IPOPT prints it for any options file not named ipopt.opt, before it reads the file's
+//     print_level (IpoptApplication::Initialize), and ff-Ipopt passes the file only by that name
+//     (include/solve/ipopt_problem.idp). exitRun releases held output first: an error line printed
+//     inside an IPOPT callback is not lost.
 #include "ff++.hpp"
 #include "mpi_bridge.hpp"
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fcntl.h>
+#include <sys/mman.h>
+#include <string>
 #include <sys/time.h>
 #include <unistd.h>
 
 namespace {
+
+FILE *heldOutput = 0;   // where the standard output goes while held
+int savedOutput = -1;   // the standard output's own descriptor meanwhile
+
+long holdOutput() {
+  if (heldOutput) return 0;
+  cout.flush();
+  fflush(stdout);
+  // in memory (memfd), not in /tmp: a full disk there must not swallow an error line
+  int memory = memfd_create("held-output", 0);
+  heldOutput = (memory >= 0) ? fdopen(memory, "w+") : 0;
+  if (!heldOutput) {   // nothing held: the line is printed, nothing else changes
+    if (memory >= 0) close(memory);
+    return 0;
+  }
+  savedOutput = dup(1);
+  if (savedOutput < 0 || dup2(fileno(heldOutput), 1) < 0) {
+    if (savedOutput >= 0) close(savedOutput);
+    fclose(heldOutput);
+    heldOutput = 0;
+    savedOutput = -1;
+  }
+  return 0;
+}
+
+bool isOptionFileLine(const std::string &line) {
+  const char *head = "Using option file \"";
+  return line.compare(0, strlen(head), head) == 0 && line.size() >= 2
+         && line.compare(line.size() - 2, 2, "\".") == 0;
+}
+
+long releaseOutput() {
+  if (!heldOutput) return 0;
+  cout.flush();
+  fflush(stdout);
+  dup2(savedOutput, 1);
+  close(savedOutput);
+  savedOutput = -1;
+  std::string text;
+  char buffer[65536];
+  rewind(heldOutput);
+  for (size_t n; (n = fread(buffer, 1, sizeof buffer, heldOutput)) > 0;) text.append(buffer, n);
+  fclose(heldOutput);
+  heldOutput = 0;
+  // the lines, each with its end; IPOPT's is "\nUsing option file \"...\".\n\n"
+  std::string kept;
+  size_t start = 0;
+  bool dropBlank = false;
+  while (start < text.size()) {
+    size_t end = text.find('\n', start);
+    end = (end == std::string::npos) ? text.size() : end + 1;
+    std::string line = text.substr(start, end - start);
+    std::string bare = line.substr(0, line.find('\n'));
+    start = end;
+    if (isOptionFileLine(bare)) {
+      if (kept.size() >= 2 && kept.compare(kept.size() - 2, 2, "\n\n") == 0) kept.pop_back();
+      else if (kept == "\n") kept.clear();
+      dropBlank = true;
+      continue;
+    }
+    if (dropBlank && bare.empty()) { dropBlank = false; continue; }
+    dropBlank = false;
+    kept += line;
+  }
+  if (!kept.empty()) {
+    fwrite(kept.data(), 1, kept.size(), stdout);
+    fflush(stdout);
+  }
+  return 0;
+}
 
 long exitRun(long code) {
   // under MPI every process fails at the same point: the others leave it to process 0 to print its
@@ -29,6 +108,7 @@ long exitRun(long code) {
   // last lines unprinted when another process was first). They wait for mpirun to stop them, not a
   // fixed while that a loaded machine could outlast, and end by themselves after a minute only if
   // process 0 went on (a failure of theirs alone)
+  releaseOutput();
   if (code != 0 && mpisize > 1 && mpirank > 0) sleep(60);
   cout.flush();
   cerr.flush();
@@ -72,6 +152,8 @@ void init() {
   Global.Add("processRank", "(", new OneOperator0<long>(processRank));
   Global.Add("processBarrier", "(", new OneOperator0<long>(processBarrier));
   Global.Add("launchedProcesses", "(", new OneOperator0<long>(launchedProcesses));
+  Global.Add("holdOutput", "(", new OneOperator0<long>(holdOutput));
+  Global.Add("releaseOutput", "(", new OneOperator0<long>(releaseOutput));
 }
 
 }  // namespace

@@ -55,6 +55,9 @@ def test_working_folder_untouched():
     after = set(os.listdir(work)) - {"o"}
     check("ipopt.opt in the working folder is not read", code == 0, output.strip().splitlines()[-1:])
     check("no stray files in the working folder", after == before, str(after - before))
+    # IPOPT prints it at each call, before it reads print_level 0 (plugin/run_control.cpp)
+    check("IPOPT's 'Using option file' line is not printed (load steps through IPOPT)",
+          "Using option file" not in output and "\n\n" not in output.strip(), output[:300])
 
 
 def test_headless():
@@ -71,6 +74,8 @@ def test_headless():
     check("headless, output to a file: exit 0", code == 0, f"exit {code}")
     check("headless, output to a file: the results are in the output and summary.json is complete",
           "  a = " in text and s is not None and s["complete"], text.strip().splitlines()[-1:])
+    check("headless: IPOPT's 'Using option file' line is not printed (the condensed solve's IPOPT)",
+          "Using option file" not in text, text[:300])
     proc = subprocess.run(["FreeFem++", "benchmarks/cube.edp", "-out", out("headless pipe")], cwd=ROOT, env=headless_env(),
                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     check("headless, output to a pipe: exit 0 with the results", proc.returncode == 0 and "  w = " in proc.stdout,
