@@ -65,8 +65,8 @@ def check_script_cases(name, expected, prefix=None):
 def registered_laws(include_dir=os.path.join(ROOT, "include")):
     """The law names listed in include/laws/registry.idp (read here, independently of FreeFEM)."""
     text = open(os.path.join(include_dir, "laws", "registry.idp")).read()
-    line = re.search(r"^macro registeredLaws\(apply\)(.*)// EOM", text, re.M).group(1)
-    return re.findall(r"apply\((\w+)\)", line)
+    body = re.search(r"^macro registeredLaws\(apply\)(.*?)// EOM", text, re.M | re.S).group(1)
+    return re.findall(r"apply\((\w+)\)", body)
 
 
 def suite_copy(name):

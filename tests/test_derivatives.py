@@ -69,17 +69,13 @@ def test_new_law_recipe():
     include = os.path.join(work, "include")
     shutil.copytree(os.path.join(ROOT, "include"), include)
     law = open(os.path.join(include, "laws", "mooneyRivlin.idp")).read()
-    for old, new in (("mooneyRivlin", "plantedLaw"), ("MooneyRivlin", "PlantedLaw"), ("lawC10", "plantedC10"),
-                     ("lawC01", "plantedC01")):
-        law = law.replace(old, new)   # a law of its own: its own names and parameters
-    planted = law.replace("28./9*plantedC01", "28./8*plantedC01")
+    for old, new in (("mooneyRivlin", "plantedLaw"), ("MooneyRivlin", "PlantedLaw")):
+        law = law.replace(old, new)   # a law of its own: its own names and parameters (plantedLawC10)
+    planted = law.replace("28./9*plantedLawC01", "28./8*plantedLawC01")
     check("new law: the planted error is in the file", planted != law)
     with open(os.path.join(include, "laws", "plantedLaw.idp"), "w") as f:
         f.write(planted)
-    registry = os.path.join(include, "laws", "registry.idp")
-    text = open(registry).read()
-    with open(registry, "w") as f:
-        f.write(text.replace("apply(linearElastic) // EOM", "apply(linearElastic) apply(plantedLaw) // EOM"))
+    register_law(include, "plantedLaw", first=False)
     check("new law: registered", "plantedLaw" in registered_laws(include))
     with open(os.path.join(work, "freefem++.pref"), "w") as f:
         f.write(f'loadpath += "/usr/lib/freefem++"\nloadpath += "{ROOT}/plugin"\nincludepath += "{include}"\nverbosity = 0\n')
@@ -95,38 +91,59 @@ def test_new_law_recipe():
     check("new law: fd_laws exits non-zero", code != 0, f"exit {code}")
 
 
-def test_law_recipe_from_docs():
-    """Issue 25: docs/adding_a_law.md followed literally. Its Yeoh example file is written to
-    include/laws/yeoh.idp in a copy of the suite and registered as the page says; the finite-difference
-    test checks it in 2D and 3D (1e-8, as every law); and with C20 = C30 = 0 it is the Neo-Hookean law,
-    so the O-ring plates (a non-homogeneous, nearly incompressible problem where a law that kept its
-    own volumetric term would lock) give Neo-Hookean's plate force under the default volumetric form at
-    nu = 0.4999 and 0.5: both runs solve the same problem to -tol 1e-10, bound 1e-9 (measured: equal
-    to all 16 digits). A copy of the file without its setVolumetricModulus call is refused: exit 2,
-    one error line naming setVolumetricModulus."""
+def register_law(include, name, first=True):
+    """Step 2 of docs/adding_a_law.md, literally: the page's registry line, with the law's name, added
+    to the list registeredLaws, first or last (the page allows any place)."""
     doc = open(os.path.join(ROOT, "docs", "adding_a_law.md")).read()
-    m = re.search(r"<!-- law file: (\S+) -->\n```freefem\n(.*?)```", doc, re.S)
-    check("law recipe: docs/adding_a_law.md holds the example law file", m is not None)
+    m = re.search(r"<!-- registry line -->\n\s*```freefem\n(.*?)\n\s*```", doc, re.S)
+    check("law recipe: docs/adding_a_law.md gives the registry line", m is not None)
     if m is None:
         return
-    work, include = suite_copy("law recipe yeoh")
-    law_text = m.group(2)
-    with open(os.path.join(work, m.group(1)), "w") as f:
-        f.write(law_text)
+    line = m.group(1).strip().replace("<name>", name)
     registry = os.path.join(include, "laws", "registry.idp")
     text = open(registry).read()
+    start = text.index("macro registeredLaws(apply)\n")
+    at = text.index("\n", start) + 1 if first else text.index("// EOM", start)
     with open(registry, "w") as f:
-        f.write(text.replace(") // EOM", ") apply(yeoh) // EOM", 1))
-    check("law recipe: yeoh registered", "yeoh" in registered_laws(include))
+        f.write(text[:at] + "  " + line + "\n" + text[at:])
+
+
+def test_law_recipe_from_docs():
+    """Issues 25 and 41: docs/adding_a_law.md followed literally. Its example law files (Yeoh, Gent) are
+    written to include/laws/ in a copy of the suite and registered as the page says (the page's
+    registry line, one law first in the list and one last); the finite-difference test checks them in
+    2D and 3D (1e-8, as every law). With C20 = C30 = 0 Yeoh is the Neo-Hookean law, so the O-ring
+    plates (a non-homogeneous, nearly incompressible problem where a law that kept its own volumetric
+    term would lock) give Neo-Hookean's plate force under the default volumetric form at nu = 0.4999
+    and 0.5: both runs solve the same problem to -tol 1e-10, bound 1e-9 (measured: equal to all 16
+    digits). Gent's domain (I1b - 3 < Jm): the plates squeezed 20 % with Jm = 1 make the solver try
+    points past it (measured: 2), which are rejected, and the run completes (exit 0): before the
+    domain hook a law could only fail() there (exit 3). A copy of the Yeoh file without its
+    setVolumetricModulus call is refused: exit 2, one error line naming setVolumetricModulus."""
+    doc = open(os.path.join(ROOT, "docs", "adding_a_law.md")).read()
+    files = re.findall(r"<!-- law file: (\S+) -->\n```freefem\n(.*?)```", doc, re.S)
+    check("law recipe: docs/adding_a_law.md holds the Yeoh and Gent law files",
+          [os.path.basename(path) for path, _ in files] == ["yeoh.idp", "gent.idp"], str([p for p, _ in files]))
+    if len(files) != 2:
+        return
+    work, include = suite_copy("law recipe")
+    for (path, text), first in zip(files, (True, False)):
+        with open(os.path.join(work, path), "w") as f:
+            f.write(text)
+        register_law(include, os.path.basename(path)[:-4], first)
+    laws = registered_laws(include)
+    check("law recipe: yeoh registered first and gent last", laws[0] == "yeoh" and laws[-1] == "gent", str(laws))
     code, output, _ = run_driver(os.path.join(ROOT, "tests", "fd_laws.edp"), [], None, cwd=work)
-    lines = [l for l in output.splitlines() if l.startswith("fd_laws dim=") and "law=yeoh " in l]
-    check("law recipe: the Yeoh law's P and A against finite differences in 2D and 3D (1e-8)",
-          len(lines) == 2 and all(l.endswith("PASS") for l in lines) and code == 0, str(lines))
+    for law in ("yeoh", "gent"):
+        lines = [l for l in output.splitlines() if l.startswith("fd_laws dim=") and f"law={law} " in l]
+        check(f"law recipe: the {law} law's P and A against finite differences in 2D and 3D (1e-8)",
+              len(lines) == 2 and all(l.endswith("PASS") for l in lines) and code == 0, str(lines))
     driver = open(os.path.join(ROOT, "benchmarks", "oring.edp")).read()
-    yeoh_driver = driver.replace('setMooneyRivlin("neohookean", C10, 0, nu);', "setYeoh(C10, 0, 0, nu);")
-    check("law recipe: the O-ring driver's law line replaced", yeoh_driver != driver)
-    with open(os.path.join(work, "oring_yeoh.edp"), "w") as f:
-        f.write(yeoh_driver)
+    law_line = 'setMooneyRivlin("neohookean", C10, 0, nu);'
+    check("law recipe: the O-ring driver's law line found", law_line in driver)
+    for name, call in (("yeoh", "setYeoh(C10, 0, 0, nu);"), ("gent", "setGent(2*C10, 1, nu);")):
+        with open(os.path.join(work, f"oring_{name}.edp"), "w") as f:
+            f.write(driver.replace(law_line, call))
     common = ["-case", "plates", "-cmax", "0.2", "-steps", "5", "-tol", "1e-10"]
     for nu in ("0.4999", "0.5"):
         o_yeoh, o_nh = out(f"law recipe yeoh nu {nu}"), out(f"law recipe neohookean nu {nu}")
@@ -139,9 +156,17 @@ def test_law_recipe_from_docs():
         fy, fn = y["results"]["force_c0.2"]["computed"], n["results"]["force_c0.2"]["computed"]
         check(f"law recipe nu={nu}: Yeoh with C20 = C30 = 0 gives Neo-Hookean's plate force to 1e-9",
               abs(fy - fn) <= 1e-9 * fn, f"{fy:.16g} vs {fn:.16g}")
+    o_gent = out("law recipe gent")
+    code_g, output_g, _ = run_driver(os.path.join(work, "oring_gent.edp"), common, o_gent, cwd=work)
+    g = read_summary(o_gent)
+    rejected = (g or {}).get("solver", {}).get("outside_domain_trial_points", 0)
+    check("law recipe: Gent, Jm = 1: trial points past the locking stretch rejected, the run completes (exit 0)",
+          code_g == 0 and g is not None and g["complete"] and rejected > 0,
+          f"exit {code_g}, {rejected} rejected: {output_g.strip().splitlines()[-1:]}")
+    path, law_text = files[0]
     forgetful = law_text.replace("  setVolumetricModulus((nu == 0.5 ? 0. : 2*C10/(1 - 2*nu)), nu);\n", "")
     check("law recipe: the copy without setVolumetricModulus differs", forgetful != law_text)
-    with open(os.path.join(work, m.group(1)), "w") as f:
+    with open(os.path.join(work, path), "w") as f:
         f.write(forgetful)
     o = out("law recipe forgetful")
     code, output, _ = run_driver(os.path.join(work, "oring_yeoh.edp"), common, o, cwd=work)
