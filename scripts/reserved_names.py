@@ -30,9 +30,24 @@ def split_top(text):
     return parts
 
 
+def statements(path):
+    """The file's top-level lines, a declaration continued on the next lines (until its ';') joined
+    into one."""
+    lines = open(path).read().split("\n")
+    k = 0
+    while k < len(lines):
+        line = lines[k]
+        k += 1
+        if re.match(r"^" + TYPES + r"\b", line):
+            while not line.split("//")[0].rstrip().endswith(";") and k < len(lines) and lines[k].startswith(" "):
+                line = line.split("//")[0].rstrip() + " " + lines[k].strip()
+                k += 1
+        yield line
+
+
 def names_in(path):
     names = set()
-    for line in open(path):
+    for line in statements(path):
         if line.startswith((" ", "\t", "//")):
             continue
         m = re.match(r"^func\s+\S+(?:\[int\])?\s+(\w+)\s*\(", line) or re.match(r"^func\s+(\w+)\s*\(", line)

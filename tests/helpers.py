@@ -82,8 +82,8 @@ def suite_copy(name):
 def registered_obstacles(include_dir=os.path.join(ROOT, "include")):
     """The obstacle kinds listed in include/contact/obstacles.idp (read here, independently of FreeFEM)."""
     text = open(os.path.join(include_dir, "contact", "obstacles.idp")).read()
-    line = re.search(r"^macro registeredObstacles\(apply\)(.*)// EOM", text, re.M).group(1)
-    return re.findall(r"apply\((\w+)\)", line)
+    body = re.search(r"^macro registeredObstacles\(apply\)(.*?)// EOM", text, re.M | re.S).group(1)
+    return re.findall(r"apply\((\w+)\)", body)
 
 
 def cube_case(label, args, tol=verdicts.bound("cube_2d_mooney", "w")):

@@ -159,7 +159,8 @@ def test_include_layout():
     core/driver_setup.idp, the driver's set-up check), includes exactly the suite files its Needs
     line names, at its top; core/driver_setup.idp skips every file that includes it; contact does
     not reach into the body's rows; a driver that includes the prelude twice still runs;
-    docs/reserved_names.md lists the names include/ defines (scripts/reserved_names.py)."""
+    docs/reserved_names.md lists the names include/ defines (scripts/reserved_names.py); every
+    line within 100 characters (issue 41)."""
     import glob as _glob
     files = include_files()
     check(f"layout: {len(files)} include files found", len(files) >= 40, str(len(files)))
@@ -169,6 +170,8 @@ def test_include_layout():
         guard = guard_of(rel)
         code = [l for l in text.splitlines() if l.strip() and not l.startswith("//")]
         check(f"layout {rel}: states what it needs", "Needs:" in text)
+        long_lines = [n + 1 for n, l in enumerate(text.splitlines()) if len(l) > 100]
+        check(f"layout {rel}: lines within 100 characters", not long_lines, f"lines {long_lines[:5]}")
         if code[0] == 'include "core/driver_setup.idp"':
             setup_users.append(rel)
             code = code[1:]
