@@ -1,7 +1,7 @@
 # Quick start: `make` runs every benchmark and writes the report (results/REPORT.md and
 # results/report.html); `make test` runs the test suite. Both install missing dependencies
 # first. Benchmarks run in parallel, one per core (JOBS=1 for one at a time).
-.PHONY: run report table test convergence sweep bench deps clean workspace check-driver
+.PHONY: run report table test convergence sweep bench deps clean workspace check-driver reserved-names
 # Debian's interpreter, where the deps script installs matplotlib (a pyenv shim may shadow it)
 PYTHON := $(shell test -x /usr/bin/python3 && echo /usr/bin/python3 || echo python3)
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
@@ -60,6 +60,10 @@ workspace: deps
 # a driver's names that hide FreeFEM's or the suite's: `make check-driver F=my_problem.edp`
 check-driver:
 	@$(PYTHON) scripts/check_driver.py "$$F"
+
+# docs/reserved_names.md from include/, after a new law, obstacle or file (make test checks it)
+reserved-names:
+	@$(PYTHON) scripts/reserved_names.py > docs/reserved_names.md.tmp && mv docs/reserved_names.md.tmp docs/reserved_names.md
 
 # Debian's packages, then the suite's plugins (each plugin/<name>.cpp says what it is for):
 # headless, which freefem++.pref loads; run_control (exit codes, wall clock), files (no shell),

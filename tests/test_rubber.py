@@ -1,72 +1,70 @@
 """Rubber: the cube's exact homogeneous states, incompressibility, Rivlin's tube, the axisymmetric cylinder, the O-ring benchmarks, the platen block, the stability study and the 3D indentation."""
 
+import pytest
+
 from helpers import *  # noqa: F401,F403 (check, out, run_driver, read_summary, ROOT, TMP and the shared helpers)
 
 
-def test_cube():
+# The block's cases, one test each (pytest -k "3d and mooney" selects): material x (dimension, n).
+CUBE_GRID = [(material, dim, n) for material in ("mooney", "neohookean") for dim, n in (("2", "6"), ("3", "3"))]
+CUBE_IDS = [f"{dim}d-{material}" for material, dim, _ in CUBE_GRID]
+
+
+@pytest.mark.parametrize("material, dim, n", CUBE_GRID, ids=CUBE_IDS)
+def test_cube(material, dim, n):
     expected = {"mooney": 0.0340725, "neohookean": 0.0783308}   # preprint / issue, 6 digits
-    for material in ("mooney", "neohookean"):
-        for dim, n in (("2", "6"), ("3", "3")):
-            s = cube_case(f"cube {dim}D {material}", ["-material", material, "-dim", dim, "-n", n])
-            if s is None:
-                continue
-            w_exact = s["results"]["w"]["reference"]
-            check(f"cube {dim}D {material}: exact solution is the preprint's {expected[material]}",
-                  abs(w_exact - expected[material]) < 5e-8, f"{w_exact:.8f}")
-            if dim == "2":
-                ca = s["results"]["w_vs_code_aster_incompressible"]["rel_error"]
-                check(f"cube {dim}D {material}: 0.19 % from Code_Aster's incompressible value",
-                      abs(ca - 0.0019) < 0.0001, f"{ca:.5f}")
+    s = cube_case(f"cube {dim}D {material}", ["-material", material, "-dim", dim, "-n", n])
+    if s is None:
+        return
+    w_exact = s["results"]["w"]["reference"]
+    check(f"cube {dim}D {material}: exact solution is the preprint's {expected[material]}",
+          abs(w_exact - expected[material]) < 5e-8, f"{w_exact:.8f}")
+    if dim == "2":
+        ca = s["results"]["w_vs_code_aster_incompressible"]["rel_error"]
+        check(f"cube {dim}D {material}: 0.19 % from Code_Aster's incompressible value",
+              abs(ca - 0.0019) < 0.0001, f"{ca:.5f}")
 
 
-def test_cube_second_parameter_set():
+@pytest.mark.parametrize("material, dim, n", [(m, d, {"2": "5", "3": "2"}[d]) for m, d, _ in CUBE_GRID], ids=CUBE_IDS)
+def test_cube_second_parameter_set(material, dim, n):
     """Non-default data and 3 load steps: same exactness, one record per step."""
-    for material, extra in (("mooney", ["-C10", "0.5", "-C01", "0.8"]), ("neohookean", ["-C10", "2.0"])):
-        for dim, n in (("2", "5"), ("3", "2")):
-            args = ["-material", material, "-dim", dim, "-n", n, "-nu", "0.45", "-pressure", "0.3", "-steps", "3"] + extra
-            s = cube_case(f"cube {dim}D {material} nu=0.45 p=0.3 3 steps", args)
-            if s is not None:
-                check(f"cube {dim}D {material} 3 steps: three step records, load 1/3, 2/3, 1",
-                      [round(st["load_factor"], 12) for st in s["steps"]] == [round(1 / 3, 12), round(2 / 3, 12), 1.0])
+    extra = {"mooney": ["-C10", "0.5", "-C01", "0.8"], "neohookean": ["-C10", "2.0"]}[material]
+    args = ["-material", material, "-dim", dim, "-n", n, "-nu", "0.45", "-pressure", "0.3", "-steps", "3"] + extra
+    s = cube_case(f"cube {dim}D {material} nu=0.45 p=0.3 3 steps", args)
+    if s is not None:
+        check(f"cube {dim}D {material} 3 steps: three step records, load 1/3, 2/3, 1",
+              [round(st["load_factor"], 12) for st in s["steps"]] == [round(1 / 3, 12), round(2 / 3, 12), 1.0])
 
 
-def test_cube_on_foundation():
+@pytest.mark.parametrize("material, dim, n", CUBE_GRID, ids=CUBE_IDS)
+def test_cube_on_foundation(material, dim, n):
     """The block resting on the rigid plane y = 0 (contact instead of u_y = 0) has the same
     exact solution; the contact force from IPOPT's multipliers must carry the whole load
     (pressure x top area), the forces must balance and nothing may sink into the plane."""
-    for material in ("mooney", "neohookean"):
-        for dim, n in (("2", "6"), ("3", "3")):
-            label = f"cube {dim}D {material} on foundation"
-            s = cube_case(label, ["-material", material, "-dim", dim, "-n", n, "-foundation", "1"])
-            if s is None:
-                continue
-            f = s["results"]["contact_force"]
-            check(f"{label}: contact force = applied load to 1e-10", f["rel_error"] <= 1e-10,
-                  f"{f['computed']:.12g} vs {f['reference']:.12g}, rel={f['rel_error']:.1e}")
-            p = s["results"]["max_penetration"]["computed"]
-            check(f"{label}: penetration <= 1e-10 x block height", p <= 1e-10, f"{p:.1e}")
-            # every component of applied + contact + reactions sums to zero (a sum over a stepped
-            # slice that dropped the last node's z made this 5e-3 in 3D while the contact force held)
-            b = s["results"]["force_balance_rel_error"]["computed"]
-            check(f"{label}: force balance <= 1e-8", b <= 1e-8, f"{b:.1e}")
+    label = f"cube {dim}D {material} on foundation"
+    s = cube_case(label, ["-material", material, "-dim", dim, "-n", n, "-foundation", "1"])
+    if s is None:
+        return
+    f = s["results"]["contact_force"]
+    check(f"{label}: contact force = applied load to 1e-10", f["rel_error"] <= 1e-10,
+          f"{f['computed']:.12g} vs {f['reference']:.12g}, rel={f['rel_error']:.1e}")
+    p = s["results"]["max_penetration"]["computed"]
+    check(f"{label}: penetration <= 1e-10 x block height", p <= 1e-10, f"{p:.1e}")
+    # every component of applied + contact + reactions sums to zero (a sum over a stepped
+    # slice that dropped the last node's z made this 5e-3 in 3D while the contact force held)
+    b = s["results"]["force_balance_rel_error"]["computed"]
+    check(f"{label}: force balance <= 1e-8", b <= 1e-8, f"{b:.1e}")
 
 
-def cube_default_form_2d(dim):
-    """test_cube_homogeneous_default_form's plane strain or axisymmetric block (-dim 2 or axi)."""
-    for material in ("mooney", "neohookean"):
-        for nu in ("0.45", "0.4999", "0.5"):
-            for foundation in ("0", "1"):
-                for perturb in ("0", "0.3"):
-                    for c, steps in (("0.01", "1"), ("0.35", "4")):
-                        homogeneous_case(f"cube {dim} {material} nu={nu} foundation={foundation} perturb={perturb} platen {c}",
-                                         ["-dim", dim, "-material", material, "-nu", nu, "-foundation", foundation,
-                                          "-perturb", perturb, "-load", "platen", "-compression", c, "-steps", steps])
-                homogeneous_case(f"cube {dim} {material} nu={nu} foundation={foundation} perturb=0.3 dead load 0.2",
-                                 ["-dim", dim, "-material", material, "-nu", nu, "-foundation", foundation,
-                                  "-perturb", "0.3", "-compression", "0.2"])
+# The default volumetric form's grid: (dimension, law, nu), one test each.
+DEFAULT_FORM_GRID = ([(dim, material, nu) for dim in ("2", "axi") for material in ("mooney", "neohookean")
+                      for nu in ("0.45", "0.4999", "0.5")]
+                     + [("3", material, nu) for material in ("mooney", "neohookean") for nu in ("0.4999", "0.5")])
 
 
-def test_cube_homogeneous_default_form():
+@pytest.mark.parametrize("dim, material, nu", DEFAULT_FORM_GRID,
+                         ids=[f"{d if d == 'axi' else d + 'd'}-{m}-nu{nu}" for d, m, nu in DEFAULT_FORM_GRID])
+def test_cube_homogeneous_default_form(dim, material, nu):
     """Issue 25: the default volumetric form on the compressed block, 1 % to 35 % compression, 2D, axisymmetric
     and 3D, Mooney-Rivlin and Neo-Hookean, nu 0.45 to 0.5, supported or on the rigid foundation, on the
     structured mesh and with its interior vertices moved at random by up to 0.3 of the spacing. Under
@@ -79,9 +77,26 @@ def test_cube_homogeneous_default_form():
     compressible (0.45), nearly (0.4999: the penalty's K / G = 5000) and exactly incompressible (0.5);
     0.499 went, which took 40 of the 180 runs and met every check as 0.4999 did (make test's 15 minutes).
 
-    Here plane strain; test_cube_default_form_axi and test_cube_default_form_3d run the rest (three
-    tests, so that the suite's two workers share them)."""
-    cube_default_form_2d("2")
+    One test per (dimension, law, nu): pytest -k "axi and mooney" selects; in 3D n = 3 and nu 0.4999
+    and 0.5, without the foundation. test_cube_dead_load_past_stability runs the buckled block."""
+    name = "3D" if dim == "3" else dim
+    mesh = ["-n", "3"] if dim == "3" else []
+    for foundation in (("0",) if dim == "3" else ("0", "1")):
+        on = "" if dim == "3" else f" foundation={foundation}"
+        support = [] if dim == "3" else ["-foundation", foundation]
+        for perturb in ("0", "0.3"):
+            for c, steps in (("0.01", "1"), ("0.35", "4")):
+                homogeneous_case(f"cube {name} {material} nu={nu}{on} perturb={perturb} platen {c}",
+                                 ["-dim", dim] + mesh + ["-material", material, "-nu", nu] + support
+                                 + ["-perturb", perturb, "-load", "platen", "-compression", c, "-steps", steps])
+        homogeneous_case(f"cube {name} {material} nu={nu}{on} perturb=0.3 dead load 0.2",
+                         ["-dim", dim] + mesh + ["-material", material, "-nu", nu] + support
+                         + ["-perturb", "0.3", "-compression", "0.2"])
+
+
+def test_cube_dead_load_past_stability():
+    """The dead-loaded block past its instability (test_cube_homogeneous_default_form): the run says
+    so."""
     # past the dead-loaded block's instability: exit 4, one error line, the state named unstable
     for args in (["-pressure", "12"], ["-material", "neohookean", "-compression", "0.28"]):
         o = out(f"cube buckled {args}")
@@ -94,24 +109,6 @@ def test_cube_homogeneous_default_form():
               and s["results"]["exact_state_negative_eigenvalues"]["computed"] >= 1, f"exit {code}: {errors}")
 
 
-def test_cube_default_form_axi():
-    """test_cube_homogeneous_default_form's grid on the axisymmetric cylinder."""
-    cube_default_form_2d("axi")
-
-
-def test_cube_default_form_3d():
-    """test_cube_homogeneous_default_form's grid in 3D (n = 3; nu 0.4999 and 0.5)."""
-    for material in ("mooney", "neohookean"):
-        for nu in ("0.4999", "0.5"):
-            for perturb in ("0", "0.3"):
-                for c, steps in (("0.01", "1"), ("0.35", "4")):
-                    homogeneous_case(f"cube 3D {material} nu={nu} perturb={perturb} platen {c}",
-                                     ["-dim", "3", "-n", "3", "-material", material, "-nu", nu, "-perturb", perturb,
-                                      "-load", "platen", "-compression", c, "-steps", steps])
-            homogeneous_case(f"cube 3D {material} nu={nu} perturb=0.3 dead load 0.2",
-                             ["-dim", "3", "-n", "3", "-material", material, "-nu", nu, "-perturb", "0.3", "-compression", "0.2"])
-
-
 def test_stability_check():
     """Issue 25, the stability check (tests/stability_check.edp): the default form's tangent at the exact
     homogeneous state has no negative eigenvalue under the platen at 0, 10, 28 and 35 % compression
@@ -121,33 +118,32 @@ def test_stability_check():
     check_script_cases("stability_check", 95, prefix="stability_check ")
 
 
-def test_incompressible_cube():
+@pytest.mark.parametrize("material, dim, n", CUBE_GRID, ids=CUBE_IDS)
+def test_incompressible_cube(material, dim, n):
     """nu = 0.5 (-volumetric nodal: Jbar_n = 1 at every vertex as IPOPT equalities): w equals the
     incompressible homogeneous solution 2 (C10 + C01)(l - l^-3) = -p, computed in the project,
     to 1e-8 (IPOPT's tolerance: measured <= 5.7e-10), which is Code_Aster's analytic 0.034009 and
     0.07818; the element pressures from the multipliers equal the exact -tr(sigma)/3 to 1e-8
     (measured 5.4e-10) and are uniform to 1e-8 (measured 3e-13); also on the rigid foundation."""
     code_aster = {"mooney": 0.034009, "neohookean": 0.07818}
-    for material in ("mooney", "neohookean"):
-        for dim, n in (("2", "6"), ("3", "3")):
-            for foundation in ("0", "1"):
-                label = f"cube {dim}D {material} nu=0.5" + (" on foundation" if foundation == "1" else "")
-                s = cube_case(label, ["-material", material, "-dim", dim, "-n", n, "-nu", "0.5", "-foundation", foundation])
-                if s is None:
-                    continue
-                r = s["results"]
-                check(f"{label}: the exact w is Code_Aster's {code_aster[material]} (to its 5 digits)",
-                      abs(r["w"]["reference"] - code_aster[material]) < 5e-6, f"{r['w']['reference']:.8f}")
-                p = r["hydrostatic_pressure"]
-                # on the foundation the interior point leaves gaps ~mu / lambda (~1e-10) under the
-                # contact nodes, which the pressure feels near the base: measured spread 1.1e-8..1.4e-8
-                spread_bound = 1e-7 if foundation == "1" else 1e-8
-                check(f"{label}: pressure from the multipliers = exact -tr(sigma)/3 to 1e-8, uniform to {spread_bound:g}",
-                      p["rel_error"] <= 1e-8 and r["hydrostatic_pressure_spread"]["computed"] <= spread_bound,
-                      f"{p['rel_error']:.1e}, spread {r['hydrostatic_pressure_spread']['computed']:.1e}")
-                if foundation == "1":
-                    check(f"{label}: contact force = load to 1e-10", r["contact_force"]["rel_error"] <= 1e-10,
-                          f"{r['contact_force']['rel_error']:.1e}")
+    for foundation in ("0", "1"):
+        label = f"cube {dim}D {material} nu=0.5" + (" on foundation" if foundation == "1" else "")
+        s = cube_case(label, ["-material", material, "-dim", dim, "-n", n, "-nu", "0.5", "-foundation", foundation])
+        if s is None:
+            continue
+        r = s["results"]
+        check(f"{label}: the exact w is Code_Aster's {code_aster[material]} (to its 5 digits)",
+              abs(r["w"]["reference"] - code_aster[material]) < 5e-6, f"{r['w']['reference']:.8f}")
+        p = r["hydrostatic_pressure"]
+        # on the foundation the interior point leaves gaps ~mu / lambda (~1e-10) under the
+        # contact nodes, which the pressure feels near the base: measured spread 1.1e-8..1.4e-8
+        spread_bound = 1e-7 if foundation == "1" else 1e-8
+        check(f"{label}: pressure from the multipliers = exact -tr(sigma)/3 to 1e-8, uniform to {spread_bound:g}",
+              p["rel_error"] <= 1e-8 and r["hydrostatic_pressure_spread"]["computed"] <= spread_bound,
+              f"{p['rel_error']:.1e}, spread {r['hydrostatic_pressure_spread']['computed']:.1e}")
+        if foundation == "1":
+            check(f"{label}: contact force = load to 1e-10", r["contact_force"]["rel_error"] <= 1e-10,
+                  f"{r['contact_force']['rel_error']:.1e}")
 
 
 def test_rivlin_tube():
@@ -182,23 +178,27 @@ def test_rivlin_tube():
               errors["8"] >= 3.5 * errors["16"], f"{errors['8']:.2e} -> {errors['16']:.2e}")
 
 
-def test_axisymmetric_cylinder():
+CYLINDER_GRID = [(material, extra) for material in ("mooney", "neohookean")
+                 for extra in ([], ["-foundation", "1"], ["-nu", "0.5"])]
+
+
+@pytest.mark.parametrize("material, extra", CYLINDER_GRID,
+                         ids=[f"{m}-{'-'.join(e).lstrip('-') or 'supported'}" for m, e in CYLINDER_GRID])
+def test_axisymmetric_cylinder(material, extra):
     """The cube's axisymmetric analogue (cube.edp -dim axi): a solid cylinder between frictionless
     plates deforms homogeneously, F = diag(a, b, a), so P1 with the hoop stretch reproduces the
     exact solution (computed in the project without finite elements) to IPOPT's tolerance: 1e-8
     (measured 1e-16..4.6e-10), supported, on the rigid foundation and exactly incompressible; on
     the foundation the contact force per full revolution equals p pi r^2 to 1e-10."""
-    for material in ("mooney", "neohookean"):
-        for extra in ([], ["-foundation", "1"], ["-nu", "0.5"]):
-            label = f"cylinder {material} {' '.join(extra)}".strip()
-            s = cube_case(label, ["-material", material, "-dim", "axi", "-n", "4"] + extra)
-            if s and extra == ["-foundation", "1"]:
-                f = s["results"]["contact_force"]
-                check(f"{label}: contact force = p pi r^2 to 1e-10", f["rel_error"] <= 1e-10, f"{f['rel_error']:.1e}")
-            if s and extra == ["-nu", "0.5"]:
-                p = s["results"]["hydrostatic_pressure"]
-                check(f"{label}: pressure from the multipliers = exact -tr(sigma)/3 to 1e-8", p["rel_error"] <= 1e-8,
-                      f"{p['rel_error']:.1e}")
+    label = f"cylinder {material} {' '.join(extra)}".strip()
+    s = cube_case(label, ["-material", material, "-dim", "axi", "-n", "4"] + extra)
+    if s and extra == ["-foundation", "1"]:
+        f = s["results"]["contact_force"]
+        check(f"{label}: contact force = p pi r^2 to 1e-10", f["rel_error"] <= 1e-10, f"{f['rel_error']:.1e}")
+    if s and extra == ["-nu", "0.5"]:
+        p = s["results"]["hydrostatic_pressure"]
+        check(f"{label}: pressure from the multipliers = exact -tr(sigma)/3 to 1e-8", p["rel_error"] <= 1e-8,
+              f"{p['rel_error']:.1e}")
 
 
 def test_oring_groove():
