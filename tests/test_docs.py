@@ -12,6 +12,8 @@ top-level key. The number must match to the precision written: half a unit of it
 import glob
 import shlex
 
+import pytest
+
 from helpers import *  # noqa: F401,F403 (check, out, run_driver, read_summary, ROOT, TMP and the shared helpers)
 
 MARKER = re.compile(r"<!-- check:(.*?)-->")
@@ -67,6 +69,7 @@ def quantity(summary, name):
     return summary.get(name)
 
 
+@pytest.mark.heavy(seconds=39)
 def test_docs_numbers():
     """Every marked number in the docs is what its command computes today, to the precision written."""
     found = markers()

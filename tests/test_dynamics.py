@@ -66,6 +66,7 @@ def test_sphere_impact(name):
     check(f"{name}: no penetration", r["max_penetration"]["computed"] <= 1e-10 * 0.02)
 
 
+@pytest.mark.heavy(seconds=100)
 def test_sphere_impact_rubber_neohookean():
     """The rubber-like sphere with a Neo-Hookean law in the nodal form (the condensed SQP on the coupled
     tangent, inertia added; axisymmetric) at dt = t_c / 100: Hertz within the verdicts' bounds (measured
@@ -83,6 +84,7 @@ def test_sphere_impact_rubber_neohookean():
               r["dynamics_balance_rel_error"]["computed"] <= 1e-8, f"{r['dynamics_balance_rel_error']['computed']:.1e}")
 
 
+@pytest.mark.heavy(seconds=43)
 def test_sphere_impact_3d_rubber_neohookean():
     """The rubber-like sphere in 3D with a Neo-Hookean law in the nodal form (the condensed SQP on the
     saddle point matrix, inertia added, pressures scaled: body/volumetric.idp, saddlePressureScales),
@@ -115,6 +117,7 @@ def test_sphere_impact_3d_rubber_neohookean():
         check(f"{label}: the linear law's contact time within one step", abs(t - tl) <= 5.3266e-5 * (1 + 1e-9), f"{t:.6g} vs {tl:.6g}")
 
 
+@pytest.mark.heavy(seconds=41)
 def test_sphere_impact_3d():
     """The 3D quarter sphere (-dim 3) on a coarser mesh and step (h = a_max / 6, dt = t_c / 100): Hertz
     within the verdicts' bounds (measured 2.0 % and 1.3 %), and the default axisymmetric run's peak
@@ -203,6 +206,7 @@ def test_spheres_head_on():
         check_spheres_head_on("spheres head on", "spheres_head_on", s)
 
 
+@pytest.mark.heavy(seconds=70)
 def test_spheres_head_on_3d():
     """The two spheres in 3D (discs_head_on.edp -dim 3: each sphere's quarter on its symmetry planes, a
     3D contact pair between their surfaces; h = a_max / 4.2): Hertz within the verdicts' 3 % (measured

@@ -74,6 +74,7 @@ def stick_zone_rows(label):
     return list(csv.DictReader(open(path))) if os.path.exists(path) else []
 
 
+@pytest.mark.heavy(seconds=73)
 def test_cattaneo_rigid():
     """A rigid cylinder on a nearly or exactly incompressible block (issue 40), the default mesh a/60
     and block 10^4 a: Cattaneo's stick half-width within 3 % (measured 0.04 % at nu = 0.4999, 0.05 %
@@ -133,6 +134,7 @@ def test_cattaneo_rigid_normal_phase():
           None not in shears and shears[0] > shears[1] > shears[2], str(shears))
 
 
+@pytest.mark.heavy(seconds=175)
 def test_mindlin_sphere():
     """Two identical spheres (3D, the halves y >= 0), pressed and then sheared to Q = 0.8 mu P, the
     default mesh a/10: Mindlin's stick radius within the issue's 3 % (measured 2.6 % low; 3.3 % at a/8)

@@ -1,8 +1,11 @@
 """Hostile and bad input, the output folder, checked writes, the checks gate, the randomized sweep."""
 
+import pytest
+
 from helpers import *  # noqa: F401,F403 (check, out, run_driver, read_summary, ROOT, TMP and the shared helpers)
 
 
+@pytest.mark.heavy(seconds=60)
 def test_bad_input():
     """Every case of tests/bad_inputs.py (all drivers; the table in docs/robustness.md): one line starting
     with `error:` that names the problem, exit code 2, and no summary.json left behind."""

@@ -277,6 +277,7 @@ def test_oring_plates_deep():
         check(f"oring plates {label}: a stable equilibrium (no negative eigenvalue, active nodes held)", neg == 0, f"{neg:g}")
 
 
+@pytest.mark.heavy(seconds=34)
 def test_oring_torus():
     """The O-ring as a torus (oring_torus.edp), a face seal between plates, against the plane-strain
     ring of oring.edp -case plates on the same section mesh (h = R/24). Held at its mean radius
@@ -349,6 +350,7 @@ def test_platen_block():
               verdict == "PASS", f"{err:.2e}")
 
 
+@pytest.mark.heavy(seconds=49)
 def test_indentation():
     """Issue 25, the 3D rubber contact benchmark (benchmarks/indentation.edp): a rigid sphere pressed
     0.2 R into a Neo-Hookean block (nu = 0.499) in 10 steps, axisymmetric and 3D. The axisymmetric

@@ -1,8 +1,11 @@
 """The solve paths and their failures: the condensed path against IPOPT on the whole problem, step cuts, IPOPT failures, unreachable tolerances, errors inside callbacks, the fold guard, the hard cases."""
 
+import pytest
+
 from helpers import *  # noqa: F401,F403 (check, out, run_driver, read_summary, ROOT, TMP and the shared helpers)
 
 
+@pytest.mark.heavy(seconds=44)
 def test_condensed_path():
     """The condensed solve (include/solve/condensation.idp and the files after it) against the full KKT path on the same
     problems: the interior dofs are eliminated exactly, so both paths find the same minimiser up to
