@@ -40,7 +40,7 @@ long holdOutput() {
   cout.flush();
   fflush(stdout);
   // in memory (memfd), not in /tmp: a full disk there must not swallow an error line
-  int memory = memfd_create("held-output", 0);
+  int memory = memfd_create("held-output", MFD_CLOEXEC);
   heldOutput = (memory >= 0) ? fdopen(memory, "w+") : 0;
   if (!heldOutput) {   // nothing held: the line is printed, nothing else changes
     if (memory >= 0) close(memory);
@@ -66,7 +66,13 @@ long releaseOutput() {
   if (!heldOutput) return 0;
   cout.flush();
   fflush(stdout);
-  dup2(savedOutput, 1);
+  if (dup2(savedOutput, 1) < 0) {   // the standard output cannot be given back: keep the hold's
+    close(savedOutput);
+    savedOutput = -1;
+    fclose(heldOutput);
+    heldOutput = 0;
+    return 0;
+  }
   close(savedOutput);
   savedOutput = -1;
   std::string text;
