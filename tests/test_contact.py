@@ -98,7 +98,8 @@ def test_hertz_near_incompressible(nu):
     h = a/60: a and p_max within the same 0.3 % of Hertz as at nu = 0.3 (measured 0.02 %..0.07 %),
     the L2 error of p within the same 1 % (measured 0.15 %..0.48 %), force balance and penetration
     as always. (At the default a/30 the nodal contact pressures alternate by ~2 % node to node near
-    nu = 1/2 and L2 reaches 1.2-1.7 %: docs/rubber.md.) The penalty form at nu = 0.4999 misses a by 17 %."""
+    nu = 1/2 and L2 reaches 1.2-1.7 %: docs/rubber.md.) One test per nu; test_hertz_penalty_locks
+    runs the penalty form, which misses a by 17 % at nu = 0.4999."""
     hertz_case(f"hertz plane nodal nu={nu} h=a/60", "benchmarks/hertz_plane.edp",
                ["-volumetric", "nodal", "-nu", nu, "-h", "0.00083"])
 
