@@ -15,10 +15,10 @@
 //     processCount() (include/core/run.idp refuses it).
 //   holdOutput(), releaseOutput(): the standard output between the two goes to an anonymous file
 //     in memory and is then printed without IPOPT's line 'Using option file "<path>".' and its
-//     blank lines. IPOPT prints it for any options file not named ipopt.opt, before it reads the file's
-//     print_level (IpoptApplication::Initialize), and ff-Ipopt passes the file only by that name
-//     (include/solve/ipopt_problem.idp). exitRun releases held output first: an error line printed
-//     inside an IPOPT callback is not lost.
+//     blank lines. IPOPT prints it for any options file not named ipopt.opt, before it reads the
+//     file's print_level (IpoptApplication::Initialize), and ff-Ipopt passes the file only by that
+//     name (include/solve/ipopt_problem.idp). exitRun releases held output first: an error line
+//     printed inside an IPOPT callback is not lost.
 #include "ff++.hpp"
 #include "mpi_bridge.hpp"
 #include <cstdio>
