@@ -15,7 +15,7 @@ import time  # noqa: F401
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scripts"))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from freefem import ROOT, read_summary, run_driver  # noqa: E402,F401
+from freefem import ROOT, read_summary, run_driver, run_ok  # noqa: E402,F401
 import verdicts  # noqa: E402,F401
 
 # one scratch folder per process (pytest-xdist runs tests in two processes), removed at the end

@@ -276,6 +276,9 @@ def test_gasket_leak():
         check(f"{label}: every step balances to 1e-8 (the run's own bound; measured 2.3e-10)", b <= 1e-8, f"{b:.1e}")
         rows = list(csv.DictReader(open(os.path.join(out(label), "pressure_steps.csv"))))
         check(f"{label}: the steps stop at the leak", [row["leaked"] for row in rows] == ["0", "1"], str(len(rows)))
+        check(f"{label}: summary.json says complete, stopped by the leak (make's runner counts it a success)",
+              s["complete"] is True and s["stopped"] == "the fluid leaked at p = 2" and run_ok(0, s),
+              f"{s['complete']}, {s['stopped']}")
     label = "gasket holds"
     s = run_summary(label, "benchmarks/gasket.edp", ["-W", "2"])
     if s is not None:
