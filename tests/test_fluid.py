@@ -258,16 +258,20 @@ def test_seal_pressure():
 def test_gasket_leak():
     """The flat gasket that leaks: a compressible strip (nu = 0.3, W / T = 2) bonded to one plate,
     squeezed 10 % by the other, the fluid from its left flank to 4 G in 4 steps. It holds at 1 G
-    and leaks at 2 G: the front reaches the right flank, the run stops there with exit 0 and the
-    leak reported; every step it held balances and its front held at >= p. The same strip nearly
+    and leaks at 2 G: the front reaches the right flank, the run bisects that step 4 times and
+    stops with exit 0 and the leak's bracket reported; every step it held balances and its front
+    held at >= p. The same strip nearly
     incompressible (nu = 0.499) holds to 5 G: its contacts rise with p."""
     label = "gasket leak"
     s = run_summary(label, "benchmarks/gasket.edp", ["-W", "2", "-nu", "0.3", "-pressure", "4", "-steps", "4"])
     if s is not None:
         r = s["results"]
-        check(f"{label}: it leaks, at 2 G, after holding 1 G",
-              r["leaked"]["computed"] == 1 and r["leak_pressure"]["computed"] == 2
-              and r["held_pressure"]["computed"] == 1, str({k: r[k]["computed"] for k in ("leaked", "pressure_steps_done")}))
+        check(f"{label}: its steps hold 1 G and leak at 2 G", r["leaked"]["computed"] == 1
+              and r["pressure_steps_done"]["computed"] == 2, str({k: r[k]["computed"] for k in ("leaked", "pressure_steps_done")}))
+        held, leak = r["held_pressure"]["computed"], r["leak_pressure"]["computed"]
+        check(f"{label}: the leaking step bisected 4 times: a bracket of 1/16 G inside [1, 2] G",
+              r["leak_bisections"]["computed"] == 4 and 1 <= held < leak <= 2 and abs(leak - held - 1 / 16) < 1e-12,
+              f"[{held}, {leak}]")
         check(f"{label}: the leak is above the squeezed strip's peak contact pressure (the elastic criterion)",
               r["leak_over_squeeze_peak"]["computed"] > 1, f"{r['leak_over_squeeze_peak']['computed']:.3f}")
         f = r["front_pressure_ratio_min"]["computed"]
@@ -277,7 +281,7 @@ def test_gasket_leak():
         rows = list(csv.DictReader(open(os.path.join(out(label), "pressure_steps.csv"))))
         check(f"{label}: the steps stop at the leak", [row["leaked"] for row in rows] == ["0", "1"], str(len(rows)))
         check(f"{label}: summary.json says complete, stopped by the leak (make's runner counts it a success)",
-              s["complete"] is True and s["stopped"] == "the fluid leaked at p = 2" and run_ok(0, s),
+              s["complete"] is True and s["stopped"] == f"the fluid leaked at p = {leak:g}" and run_ok(0, s),
               f"{s['complete']}, {s['stopped']}")
     label = "gasket holds"
     s = run_summary(label, "benchmarks/gasket.edp", ["-W", "2"])
