@@ -154,6 +154,8 @@ CASES = [
     (SEAL, ["-dim", "axi", "-radius", "0"], "-radius"),
     (SEAL, ["-refine", "0"], "-refine"),
     (SEAL, ["-bracket", "21"], "-bracket"),
+    (SEAL, ["-seal", "rod"], "-seal"),
+    (SEAL, ["-dim", "axi", "-seal", "rod", "-radius", "1"], "-radius"),
     (GASKET, ["-pressure", "-1"], "-pressure"),
     (GASKET, ["-squeeze", "0.6"], "-squeeze"),
     (GASKET, ["-W", "1e6"], "-h"),
