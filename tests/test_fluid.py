@@ -114,23 +114,28 @@ def test_fluid_penetration():
 
 
 def test_fluid_errors():
-    """One error line and exit 2: a negative pressure; an arc ending on no wall; a linear law."""
+    """One error line and exit 2: a negative pressure; an arc ending on no wall; a linear law; a
+    fluid side with no free surface (its wetted label touching a plate at every node)."""
     code, output, _ = run_driver(CHECK, ["-pressure", "-1"], out("fluid bad pressure"))
     errors = [l for l in output.splitlines() if l.startswith("error:")]
     check("fluid: -pressure -1 refused",
           code == 2 and len(errors) == 1 and "-pressure" in errors[0], output[-300:])
     work = out("fluid set-up errors")
     os.makedirs(work, exist_ok=True)
-    cases = (("no wall", 'setMooneyRivlin("neohookean", 0.5, 0, 0.45);', "", "on no fluid wall"),
-             ("linear law", "setLinearElastic(1, 0.3);", "addFluidWall(0, 0, 1, 0);",
-              "hyperelastic law"))
-    for name, law, walls, words in cases:
+    neo = 'setMooneyRivlin("neohookean", 0.5, 0, 0.45);'
+    # the closed pocket: the wetted top (label 3) touches a plate at y = 1 at every node
+    plate = ('addHalfSpace("plate", 0, -1, 0, 0, 1, 0);\nsetContactCandidates(3);\n'
+             'addFluidWall(0, 0, 1, 0);\naddFluidWall(1, 0, 1, 0);\n')
+    cases = (("no wall", neo, "", "", "on no fluid wall"),
+             ("linear law", "setLinearElastic(1, 0.3);", "addFluidWall(0, 0, 1, 0);", "", "hyperelastic law"),
+             ("no free surface", neo, plate, "addFluidPenetrable(2);\nfluidFlood(U, 1e-9);\n", "no free surface"))
+    for name, law, walls, flood, words in cases:
         script = os.path.join(work, name.replace(" ", "_") + ".edp")
         open(script, "w").write(
             'include "prelude.idp"\nparamsDone();\n' + law + '\ninclude "dim2.idp"\n'
             'mesh Th = square(3, 3);\nfespace Vh(Th, vectorFE(P1));\ninclude "model.idp"\n'
             + walls + '\naddFluidPressure(3, 0.1);\nfixComponent(1, 2, 0)\n'
-            'real[int] U(Vh.ndof);\nU = 0;\nsolveLoadSteps(U, 1);\n')
+            'real[int] U(Vh.ndof);\nU = 0;\n' + flood + 'solveLoadSteps(U, 1);\n')
         code, output, _ = run_driver(script, [], None)
         errors = [l for l in output.splitlines() if l.startswith("error:")]
         check(f"fluid: {name} refused with one line",
