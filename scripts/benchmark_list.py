@@ -27,6 +27,8 @@ BENCHMARKS = [
     ("seal", "benchmarks/seal.edp", []),
     ("seal_axisymmetric", "benchmarks/seal.edp", ["-dim", "axi"]),
     ("seal_rod", "benchmarks/seal.edp", ["-dim", "axi", "-seal", "rod"]),
+    ("seal_stroke", "benchmarks/seal.edp", ["-dim", "axi", "-seal", "rod", "-pressure", "0", "-mu", "0.3", "-stroke", "0.1",
+                                            "-strokesteps", "20"]),
     ("seal_extrusion_e0.025", "benchmarks/seal.edp", ["-clearance", "0.025", "-pressure", "10", "-steps", "20", "-refine", "2"]),
     ("seal_extrusion_e0.05", "benchmarks/seal.edp", ["-clearance", "0.05", "-pressure", "10", "-steps", "20", "-refine", "2"]),
     ("seal_extrusion_e0.1", "benchmarks/seal.edp", ["-clearance", "0.1", "-pressure", "8", "-steps", "16", "-refine", "2"]),

@@ -506,6 +506,29 @@ def fig_seal_margin(name, filename):
                   params_text(s, ["C10", "nu", "clearance", "corner"]), filename)
 
 
+def fig_seal_stroke(name, filename):
+    """The friction force on the ring against the mating face's stroke: the hysteresis loop, one
+    line per cycle, with +- mu times the normal force (gross sliding) dashed."""
+    data = curve_figure(name, "stroke.csv")
+    if not data:
+        return None
+    s, rows, fig, ax = data
+    x, f, n = column(rows, "position"), column(rows, "friction_force"), column(rows, "normal_force")
+    cycle, leg = column(rows, "cycle"), column(rows, "leg")
+    mu = s["parameters"].get("mu", 0)
+    first = leg == 1
+    ax.plot(x[first], f[first], "k:", lw=1, label="first leg (from the squeezed state)")
+    for c in sorted(set(cycle[~first].astype(int))):
+        pick = np.flatnonzero((cycle == c) & ~first)
+        pick = np.concatenate(([pick[0] - 1], pick))   # from the end of the leg before: the loop closed
+        ax.plot(x[pick], f[pick], "o-" if c == 1 else "-", ms=3, mfc="none", label=f"cycle {c}")
+    ax.plot(x, mu * n, ".", color="0.5", ms=2, label="+- mu x normal force (gross sliding)")
+    ax.plot(x, -mu * n, ".", color="0.5", ms=2)
+    return finish(fig, ax, "stroke of the mating face (length)", "axial friction force on the ring (per revolution)",
+                  "O-ring seal on a stroking rod: friction force against stroke\n" +
+                  params_text(s, ["C10", "nu", "mu", "stroke", "radius", "seal"]), filename)
+
+
 def fig_seal_extrusion(names, filename, label_key, title):
     """The extrusion into the gap against p for several runs (clearances, or meshes), each with half
     its clearance dashed and the pressure where it is reached (half_clearance_pressure) marked."""
@@ -794,7 +817,7 @@ def sections():
             lambda: fig_deformed("oring_plates", "oring_plates_deformed.png",
                                  "O-ring between plates at c = 0.3 (quarter): von Mises stress", [hline(plate_y, "rigid plate")])]),
         ("O-ring seal under fluid pressure (pressure penetration)",
-         ["seal", "seal_axisymmetric", "seal_rod", "seal_extrusion_e0.025", "seal_extrusion_e0.05", "seal_extrusion_e0.1",
+         ["seal", "seal_axisymmetric", "seal_rod", "seal_stroke", "seal_extrusion_e0.025", "seal_extrusion_e0.05", "seal_extrusion_e0.1",
           "seal_extrusion_e0.15", "seal_extrusion_e0.1_refine1", "seal_extrusion_e0.1_refine4", "gasket", "gasket_compressible"],
          "The ring of the groove above, squeezed, then a fluid from the corner where the high-pressure flank "
          "meets the floor, up to 2 G. The fluid wets the free surface it fills and follows each contact while "
@@ -826,6 +849,7 @@ def sections():
                                        "O-ring seal, e = 0.1: the extrusion as the ring is refined at the gap"),
             lambda: fig_seal_deformed("seal_axisymmetric", "seal_axisymmetric_deformed.png"),
             lambda: fig_seal_deformed("seal_rod", "seal_rod_deformed.png"),
+            lambda: fig_seal_stroke("seal_stroke", "seal_stroke.png"),
             lambda: fig_seal_pressure("gasket_compressible", "gasket_contact_pressure.png", "Flat gasket (nu = 0.3)", "x_reference",
                                       "x along the gasket's top, reference (fluid from x = 0; it leaks at the right flank, x = W)")]),
         ("Rubber block pushed onto a wavy floor (displacement control)", ["platen_block"],

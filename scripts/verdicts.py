@@ -138,6 +138,14 @@ _add(["gasket", "gasket_compressible"], ["steps_force_balance_rel_error"],
 _add(["gasket"], ["leaked"], Check("balance", 0, "value", note="the nearly incompressible strip holds to 5 G"))
 _add(["gasket_compressible"], ["leak_over_squeeze_peak"],
      Check("info", note="the elastic leak criterion (leak at the squeezed peak contact pressure) is a lower bound"))
+_add(["seal_stroke"], ["stroke_gross_sliding_rel_error"],
+     Check("balance", 1e-6, "value", note="gross sliding on the rod: the axial friction force is mu times the radial "
+                                          "contact force (exact for a straight rod)"))
+_add(["seal_stroke"], ["stroke_cycle_difference_rel"],
+     Check("balance", 1e-6, "value", note="the second and third stroke cycles agree at every position, partial "
+                                          "slip after each reversal included"))
+_add(["seal_stroke"], ["force_balance_rel_error"],
+     Check("balance", 1e-10, "value", note="contact and friction forces from the multipliers balance"))
 _add(["seal", "seal_axisymmetric", "seal_rod"], ["mating_face_peak_slope"],
      Check("info", note="d(peak)/dp; a confined nearly incompressible ring passes p on to its contacts (slope 1)"))
 
