@@ -142,7 +142,7 @@ _add(["seal_stroke"], ["stroke_gross_sliding_rel_error"],
      Check("balance", 1e-6, "value", note="gross sliding on the rod: the axial friction force is mu times the radial "
                                           "contact force (exact for a straight rod)"))
 _add(["seal_stroke"], ["stroke_cycle_difference_rel"],
-     Check("balance", 1e-6, "value", note="the second and third stroke cycles agree at every position, partial "
+     Check("balance", 1e-6, "value", note="each stroke cycle repeats the one before at every position, partial "
                                           "slip after each reversal included"))
 _add(["seal_stroke"], ["force_balance_rel_error"],
      Check("balance", 1e-10, "value", note="contact and friction forces from the multipliers balance"))
