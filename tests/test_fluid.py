@@ -231,6 +231,12 @@ def test_seal_stroke():
     check(f"{label}: the first step after each reversal slips in part (|F| < mu N by 1e-3 at least)",
           len(partial) == 6 and max(partial) < 1 - 1e-3, str([round(p, 4) for p in partial]))
     check(f"{label}: no rotation row (friction holds the ring)", r["tie_force"]["computed"] == 0)
+    # without friction the stroke drags nothing: the rod's axial force is 0 (the run completes)
+    s0 = run_summary("seal stroke mu 0", SEAL, COARSE + ["-dim", "axi", "-seal", "rod", "-squeezesteps", "4",
+                                                         "-pressure", "0", "-stroke", "0.05", "-cycles", "1",
+                                                         "-strokesteps", "2"])
+    if s0 is not None:
+        check("seal stroke mu 0: no friction force on the rod", s0["results"]["stroke_friction_peak"]["computed"] == 0)
 
 
 def seal_under_fluid(label, args, balance_measured, face="mating face's"):
