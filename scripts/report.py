@@ -508,7 +508,7 @@ def fig_seal_margin(name, filename):
 
 def fig_seal_stroke(name, filename):
     """The friction force on the ring against the mating face's stroke: the hysteresis loop, one
-    line per cycle, with +- mu times the normal force (gross sliding) dashed."""
+    line per cycle, with +- mu times the normal force (gross sliding) dotted."""
     data = curve_figure(name, "stroke.csv")
     if not data:
         return None
@@ -830,7 +830,9 @@ def sections():
          "As a piston seal (axisymmetric) the fluid gets under the groove's "
          "floor only and pushes the ring onto the bore; as a rod seal (the groove in the housing) it gets behind the "
          "high-pressure flank only and the ring stays on the groove's floor and the rod; squeezed, both tend to plane "
-         "strain at first order in R / r, with opposite signs. "
+         "strain at first order in R / r, with opposite signs. With friction (mu = 0.3) the rod stroked under the "
+         "ring draws a hysteresis loop: partial slip after each reversal, then gross sliding at mu times the rod's "
+         "radial contact force to round-off, each cycle the one before. "
          "Every step balances (contact, the rotation row and the fluid's follower force), to round-off where the "
          "condensed SQP solves it and to IPOPT's tolerance where it takes over (8e-11 at most); the "
          "fluid's load is exact on homogeneous states (tests/fluid_pressure_check.edp, docs/rubber.md). A flat "
