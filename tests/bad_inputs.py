@@ -156,6 +156,7 @@ CASES = [
     (SEAL, ["-bracket", "21"], "-bracket"),
     (SEAL, ["-seal", "rod"], "-seal"),
     (SEAL, ["-stroke", "0.1"], "-stroke"),
+    (SEAL, ["-pressure", "0", "-stroke", "0.1"], "-stroke"),
     (SEAL, ["-pressure", "0", "-cycles", "0"], "-cycles"),
     (SEAL, ["-dim", "axi", "-seal", "rod", "-radius", "1"], "-radius"),
     (GASKET, ["-pressure", "-1"], "-pressure"),
