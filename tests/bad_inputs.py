@@ -157,6 +157,8 @@ CASES = [
     (SEAL, ["-seal", "rod"], "-seal"),
     (SEAL, ["-stroke", "0.1"], "-stroke"),
     (SEAL, ["-pressure", "0", "-stroke", "0.1"], "-stroke"),
+    (SEAL, ["-dim", "axi", "-seal", "rod", "-pressure", "0", "-stroke", "0.1", "-friction", "tresca", "-g", "0.1"], "-stroke"),
+    (SEAL, ["-mu", "0.3", "-bracket", "2"], "-bracket"),
     (SEAL, ["-pressure", "0", "-cycles", "0"], "-cycles"),
     (SEAL, ["-dim", "axi", "-seal", "rod", "-radius", "1"], "-radius"),
     (GASKET, ["-pressure", "-1"], "-pressure"),
