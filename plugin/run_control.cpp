@@ -4,6 +4,7 @@
 //     goes on) and that prints FreeFEM's call stack; the suite's error rule is one line and a
 //     documented exit code.
 //   clockSeconds(): wall-clock seconds with microseconds (FreeFEM's time() counts whole seconds).
+//   peakMemoryMiB(): this process's largest resident memory so far (getrusage's ru_maxrss), MiB.
 //   processCount(), processRank(): the run's MPI processes and this one's rank (1 and 0 under
 //     FreeFem++; FreeFEM's own mpirank and mpisize are names only FreeFem++-mpi's scripts know).
 //   processBarrier(): every process waits for the others (nothing under FreeFem++).
@@ -27,6 +28,7 @@
 #include <fcntl.h>
 #include <sys/mman.h>
 #include <string>
+#include <sys/resource.h>
 #include <sys/time.h>
 #include <unistd.h>
 
@@ -130,6 +132,12 @@ double clockSeconds() {
   return now.tv_sec + 1e-6*now.tv_usec;
 }
 
+double peakMemoryMiB() {
+  rusage usage;
+  if (getrusage(RUSAGE_SELF, &usage) != 0) return -1;
+  return usage.ru_maxrss/1024.;   // (kilobytes on Linux)
+}
+
 long processCount() { return mpisize > 1 ? mpisize : 1; }   // (0 under FreeFem++)
 long processRank() { return mpirank; }
 long processBarrier() {
@@ -154,6 +162,7 @@ void init() {
   }
   Global.Add("exitRun", "(", new OneOperator1<long, long>(exitRun));
   Global.Add("clockSeconds", "(", new OneOperator0<double>(clockSeconds));
+  Global.Add("peakMemoryMiB", "(", new OneOperator0<double>(peakMemoryMiB));
   Global.Add("processCount", "(", new OneOperator0<long>(processCount));
   Global.Add("processRank", "(", new OneOperator0<long>(processRank));
   Global.Add("processBarrier", "(", new OneOperator0<long>(processBarrier));

@@ -7,10 +7,21 @@ import glob  # noqa: E402
 def test_output_contract():
     o = out("contract")
     # IPOPT on the whole problem (without contact rows the default is the condensed Newton, no IPOPT)
-    code, _, _ = run_driver("benchmarks/cube.edp", ["-n", "2", "-condense", "no"], o)
+    # run by a Python of its own, whose only child it is: the kernel's peak resident memory of the
+    # run (RUSAGE_CHILDREN), the reference of the summary's peak_memory_mib
+    probe = ("import resource, subprocess, sys; subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, "
+             "stderr=subprocess.DEVNULL); print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)")
+    proc = subprocess.run([sys.executable, "-c", probe, "FreeFem++", "-nw", "benchmarks/cube.edp", "-n", "2",
+                           "-condense", "no", "-out", o], cwd=ROOT, capture_output=True, text=True)
     s = read_summary(o) or {}
     for key in ("benchmark", "parameters", "ndof", "ipopt_status", "ipopt_iterations", "wall_time_s", "results"):
         check(f"summary.json has '{key}'", key in s)
+    # written before the run ends: at most the run's peak, and within 10 % of it (the .vtu is
+    # written before the summary)
+    peak = s.get("timings", {}).get("peak_memory_mib", float("nan"))
+    run_peak = int(proc.stdout.strip() or 0) / 1024
+    check("timings.peak_memory_mib: within [0.9, 1] of the kernel's peak of the run",
+          0.9 * run_peak <= peak <= run_peak, f"{peak} against {run_peak} MiB")
     params = s.get("parameters", {})
     check("summary.json lists every parameter", all(k in params for k in
           ("material", "C10", "C01", "nu", "pressure", "dim", "n", "steps", "out")), str(sorted(params)))
