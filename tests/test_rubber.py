@@ -412,6 +412,10 @@ def test_indentation():
         counts = (reusing["timings"]["factorizations"], fresh["timings"]["factorizations"])
         check("indentation 3D h=0.125: fewer factorizations with the default reuse than with -reuse 0",
               counts[0] < counts[1] and reusing["solver"].get("reused_factorizations", 0) > 0, f"{counts}")
+        # the default reuses on the 3D saddle point path only: 0.2 there, 0 in the axisymmetric model
+        ratios = (reusing["solver"].get("reuse_ratio"), axi["solver"].get("reuse_ratio"), fresh["solver"].get("reuse_ratio"))
+        check("indentation: the reuse ratio in effect is 0.2 in 3D by default, 0 axisymmetric, 0 with -reuse 0",
+              ratios == (0.2, 0, 0), str(ratios))
 
 
 def test_small_strain_rubber():
