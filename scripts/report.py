@@ -329,6 +329,12 @@ def fig_mindlin(name, filename):
                             "Mindlin's partial slip: two spheres (3D)", ["E", "nu", "R", "force", "mu", "h"])
 
 
+def fig_mindlin_rigid(name, filename):
+    return fig_partial_slip(name, filename, "r", "mindlin_shear", "stick_radius",
+                            "Mindlin's partial slip: a rigid sphere on a rubber block (3D)",
+                            ["E", "nu", "R", "force", "mu", "h", "block"])
+
+
 def fig_oring_friction(names, filename):
     """The O-ring plates' force against the squeeze with and without friction."""
     if not read_csv(os.path.join(RESULTS, names[1], "force_squeeze.csv")):
@@ -768,18 +774,21 @@ def sections():
          "cross the block's facets, 0.5 % at h = R/40, 0.1 % at R/80.", [
             lambda: fig_sliding_disc("sliding_disc", "sliding_disc_forces.png")]),
         ("Coulomb friction: Cattaneo's and Mindlin's partial slip, exact stick, sliding",
-         ["cattaneo", "cattaneo_rigid", "cattaneo_rigid_incompressible", "cattaneo_hold", "cattaneo_sliding", "mindlin_sphere", "mindlin_sphere_hold", "sliding_disc_friction", "oring_plates_friction",
+         ["cattaneo", "cattaneo_rigid", "cattaneo_rigid_incompressible", "cattaneo_hold", "cattaneo_sliding", "mindlin_sphere", "mindlin_sphere_hold",
+          "mindlin_rigid", "mindlin_rigid_incompressible", "mindlin_rigid_hold", "sliding_disc_friction", "oring_plates_friction",
           "hertz_sphere_friction", "hertz_sphere_axisymmetric_friction"],
          "Friction over a load step is a dissipation sum g |slip| with one slack per contact row in the condensed "
          "reduced problem, no smoothing; Coulomb's bounds g = mu N come from the multipliers by a fixed point. Two "
          "identical cylinders pressed and then sheared (dolfinx_contact's set-up) meet Cattaneo's stick zone and "
-         "shear traction, and so does a rigid cylinder on a nearly incompressible block (the stabilised nodal form), two identical spheres Mindlin's stick radius and tangential displacement (3D); held at 0.99 mu P "
+         "shear traction, and so does a rigid cylinder on a nearly incompressible block (the stabilised nodal form), two identical spheres Mindlin's stick radius and tangential displacement (3D), and so does a rigid sphere on "
+         "a nearly or exactly incompressible block; held at 0.99 mu P "
          "for 50 steps the platen does not move (exact stick); driven past mu P "
          "every node slides with q = mu p. Coulomb's law is checked at every node of every step of every friction "
          "run (docs/benchmarks/friction.md).", [
             lambda: fig_cattaneo("cattaneo", "cattaneo_shear.png"),
             lambda: fig_cattaneo_rigid("cattaneo_rigid", "cattaneo_rigid_shear.png"),
             lambda: fig_mindlin("mindlin_sphere", "mindlin_shear.png"),
+            lambda: fig_mindlin_rigid("mindlin_rigid_incompressible", "mindlin_rigid_shear.png"),
             lambda: fig_oring_friction(["oring_plates", "oring_plates_friction"], "oring_friction_force.png")]),
         ("Dynamics: a bar and a sphere against a rigid wall, two bars, two discs and two spheres head on (implicit time steps)",
          ["bar_impact", "sphere_impact", "sphere_impact_neohookean", "sphere_impact_rubber", "sphere_impact_incompressible",

@@ -117,7 +117,7 @@ HOSTILE_PARAMS = {
     "benchmarks/sliding_disc.edp": (["E1", "press", "slide", "h"], ["out"]),
     "benchmarks/indentation.edp": (["E", "depth", "block", "h"], ["out"]),
     "benchmarks/cattaneo.edp": (["mu", "ratio", "pressure", "h", "travel", "hold"], ["out"]),
-    "benchmarks/mindlin_sphere.edp": (["mu", "ratio", "force", "R", "h", "steps", "hold"], ["out"]),
+    "benchmarks/mindlin_sphere.edp": (["mu", "ratio", "force", "R", "h", "steps", "hold", "nu", "block"], ["out"]),
     "benchmarks/bar_impact.edp": (["dt", "tend", "v0", "rho", "n", "cfl", "every"], ["out"]),
     "benchmarks/sphere_impact.edp": (["v0", "R", "dt", "zone", "rho", "candidates"], ["out"]),
     "benchmarks/bars_head_on.edp": (["v0", "gap", "nA", "dt"], ["out"]),

@@ -80,6 +80,8 @@ CASES = [
     (MINDLIN, ["-mu", "0"], "-mu"),
     (MINDLIN, ["-ratio", "1.5"], "-ratio"),
     (MINDLIN, ["-steps", "0"], "-steps"),
+    (MINDLIN, ["-setup", "rigid", "-block", "5"], "-block"),
+    (MINDLIN, ["-constraint", "exact"], "-constraint"),
     (PATCH, ["-n1", "0"], "-n1"),
     (PATCH, ["-pass", "three"], "-pass"),
     (PATCH, ["-pressure", "-1"], "-pressure"),
