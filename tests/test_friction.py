@@ -122,7 +122,7 @@ def test_cattaneo_rigid_normal_phase():
     """At nu = 0.5 (Dundurs' beta = 0) the normal load leaves no shear in Cattaneo's theory; on the block
     it leaves the finite block's, which falls as the block grows (a/30: 8.7e-2 p0 at 20 a, 4.9e-2 at
     100 a, 2.0e-2 at 1000 a), down to that of the nodes at the contact's edge (1.6e-2 to 2.0e-2 at a/30
-    to a/120, 1.4e-3 inside 0.8 a: docs/benchmarks/friction.md). The one tangential step of 1e-6
+    to a/120; at a/30, 1.4e-3 inside 0.8 a: docs/benchmarks/friction.md). The one tangential step of 1e-6
     mu P is there to end the run; its stick checks are not this test's."""
     shears = []
     for block in ("20", "100", "1000"):
