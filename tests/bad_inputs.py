@@ -38,6 +38,7 @@ CASES = [
     (CUBE, ["-steps", "1.5"], "-steps"),
     (PLANE, ["-R", "0"], "-R"),
     (PLANE, ["-condense", "maybe"], "-condense"),
+    (PLANE, ["-krylov", "maybe"], "-krylov"),
     (PLANE, ["-reuse", "1"], "-reuse"),
     (PLANE, ["-E", "-2e9"], "-E"),
     (PLANE, ["-pressure", "0"], "-pressure"),

@@ -418,6 +418,57 @@ def test_indentation():
               ratios == (0.2, 0, 0), str(ratios))
 
 
+def test_indentation_krylov():
+    """Issue 43: Newton's steps on reused factors by GMRES (-krylov yes, solve/krylov_step.idp) on the
+    3D indentation at R/8. Against a factorization at every iteration (-krylov no -reuse 0): the
+    same force at every depth to the issue's 1e-6 (both stop where each free dof's residual is below
+    -tol, 1e-8, of the force scale, and the force sums the multipliers of all the contact rows;
+    measured 1.7e-8), in fewer factorizations; the summary's per-step factorizations and Krylov
+    iterations add up to its totals. A planted error (a copy of the suite whose preconditioner's Schur
+    block is scaled by 0.01, as if its factors were far staler than they are) makes GMRES miss its
+    tolerance in some steps: those factorize afresh (more factorizations than without it) and the
+    forces are the same to 1e-6: never a wrong step."""
+    args = ["-dim", "3", "-h", "0.125"]
+    direct = run_summary("indentation krylov: direct", "benchmarks/indentation.edp", args + ["-krylov", "no", "-reuse", "0"])
+    krylov = run_summary("indentation krylov: krylov", "benchmarks/indentation.edp", args + ["-krylov", "yes"])
+    work, include = suite_copy("indentation krylov planted")
+    path = os.path.join(include, "solve", "krylov_step.idp")
+    text = open(path).read()
+    planted_text = text.replace("real krylovPlantedError = 1;", "real krylovPlantedError = 0.01;")
+    check("indentation krylov: the planted error is in the copy", planted_text != text)
+    with open(path, "w") as f:
+        f.write(planted_text)
+    o = out("indentation krylov: planted")
+    code, output, _ = run_driver(os.path.join(ROOT, "benchmarks", "indentation.edp"), args + ["-krylov", "yes"], o, cwd=work)
+    planted = read_summary(o)
+    check("indentation krylov: the planted run exits 0 with its summary", code == 0 and planted is not None,
+          f"exit {code}: {output.strip().splitlines()[-3:]}")
+    if direct is None or krylov is None or planted is None:
+        return
+
+    def forces(folder):
+        with open(os.path.join(folder, "force_depth.csv")) as f:
+            return [float(row["force"]) for row in csv.DictReader(f)]
+
+    plain = forces(out("indentation krylov: direct"))
+    for label, folder in (("krylov", out("indentation krylov: krylov")), ("planted", o)):
+        other = forces(folder)
+        worst = max((abs(a - b) / abs(b) for a, b in zip(other, plain)), default=1)
+        check(f"indentation krylov: {label}: -reuse 0's force at every depth to 1e-6",
+              len(other) == len(plain) == 10 and worst <= 1e-6, f"{worst:.1e}")
+    counts = [s["timings"]["factorizations"] for s in (direct, krylov, planted)]
+    check("indentation krylov: factorizations: krylov < direct -reuse 0, and the planted run factorizes more than krylov",
+          counts[1] < counts[0] and counts[2] > counts[1], str(counts))
+    for label, s in (("krylov", krylov), ("planted", planted)):
+        steps = s["steps"]
+        check(f"indentation krylov: {label}: GMRES ran; the steps' factorizations and Krylov iterations add up to the totals",
+              s["timings"]["krylov_iterations"] > 0 and s["solver"].get("krylov_steps", 0) > 0
+              and sum(x["factorizations"] for x in steps) == s["timings"]["factorizations"]
+              and sum(x["krylov_iterations"] for x in steps) == s["timings"]["krylov_iterations"],
+              f"{s['timings']}")
+    check("indentation krylov: direct ran no GMRES", direct["timings"]["krylov_iterations"] == 0)
+
+
 def test_small_strain_rubber():
     """J - 1 and the diagonal of Grad u kept without cancellation (body/kinematics.idp): the nearly
     incompressible cube at the smallest strain core/ranges.idp admits, 1e-5, converges to its exact

@@ -22,6 +22,7 @@ Writes performance.json and PERFORMANCE.md in results/performance (--out).
     scripts/performance/studies.py [--smoke] [--repeat 3] [--large] [--out results/performance]"""
 
 import argparse
+import csv
 import json
 import math
 import os
@@ -283,22 +284,52 @@ def rubber_3d_study(cube_ns, indentation_levels):
             fill.append(row)
             print(f"3D block n = {n}: {row['ndof']} dofs, factor entries per unknown {row['penalty_per_unknown']:.0f} (penalty), "
                   f"{row['nodal_per_unknown']:.0f} (nodal saddle point): x{row['ratio_per_unknown']:.2f}", flush=True)
+    # each level twice: the default (-krylov no: the stale tangent's own step where -reuse allows,
+    # else a factorization) and Newton's steps by GMRES on the last factors (-krylov yes, issue 43)
     for level in indentation_levels:
-        run = measured(f"indentation 3D h = R/{level}", 1, "benchmarks/indentation.edp",
-                       ["-dim", "3", "-h", repr(1.0 / level)], f"{OUT}/indentation_3d_R{level}")
-        if run is None:
-            continue
-        s, wall, rss, _ = run
-        t, r = s["timings"], s["results"]
-        indentation.append({"level": f"R/{level}", "ndof": s["ndof"], "wall_s": wall, "peak_rss_mb": rss,
-                            "iterations": [step["iterations"] for step in s["steps"]],
-                            "factorizations": t["factorizations"], "factorization_mean_s": t["factorization_mean"],
-                            "total_over_factorization": t["total"] / t["factorization_mean"] if t["factorization_mean"] > 0 else float("nan"),
-                            "per_unknown": s["solver"]["factor_entries_per_unknown"], "force": r["force"]["computed"],
-                            "force_small_depth_error": r["force_small_depth"]["rel_error"]})
-        print(f"indentation 3D R/{level}: {s['ndof']} dofs, {t['factorizations']} factorizations of {t['factorization_mean']:.2f} s, "
-              f"wall {wall:.0f} s, RSS {rss:.0f} MB", flush=True)
+        for solver in ("no", "yes"):
+            run = measured(f"indentation 3D h = R/{level} -krylov {solver}", 1, "benchmarks/indentation.edp",
+                           ["-dim", "3", "-h", repr(1.0 / level), "-krylov", solver], f"{OUT}/indentation_3d_R{level}_{solver}")
+            if run is None:
+                continue
+            s, wall, rss, _ = run
+            t, r = s["timings"], s["results"]
+            indentation.append({"level": f"R/{level}", "solver": solver, "ndof": s["ndof"], "wall_s": wall, "peak_rss_mb": rss,
+                                "iterations": [step["iterations"] for step in s["steps"]],
+                                "per_step": [(step["iterations"], step["krylov_iterations"], step["factorizations"],
+                                              step["shifted_iterations"]) for step in s["steps"]],
+                                "factorizations": t["factorizations"], "factorization_mean_s": t["factorization_mean"],
+                                "krylov_iterations": t["krylov_iterations"],
+                                "total_over_factorization": t["total"] / t["factorization_mean"] if t["factorization_mean"] > 0 else float("nan"),
+                                "per_unknown": s["solver"]["factor_entries_per_unknown"], "force": r["force"]["computed"],
+                                "forces": [step_force for step_force in read_column(f"{OUT}/indentation_3d_R{level}_{solver}/force_depth.csv", "force")],
+                                "force_small_depth_error": r["force_small_depth"]["rel_error"]})
+            print(f"indentation 3D R/{level} -krylov {solver}: {s['ndof']} dofs, {t['factorizations']} factorizations of "
+                  f"{t['factorization_mean']:.2f} s, {t['krylov_iterations']} GMRES iterations, wall {wall:.0f} s, RSS {rss:.0f} MB", flush=True)
     return fill, indentation
+
+
+def read_column(path, name):
+    """One column of a CSV file, as floats ([] when the file is missing)."""
+    if not os.path.exists(path):
+        return []
+    with open(path) as f:
+        return [float(row[name]) for row in csv.DictReader(f)]
+
+
+def indentation_steps_table(rows):
+    """The finest level's two runs step by step: SQP iterations, factorizations and shifted iterations
+    (and GMRES iterations with -krylov yes), and the force's relative difference at each depth."""
+    finest = [r for r in rows if r["level"] == (rows[-1]["level"] if rows else None)]
+    runs = {r["solver"]: r for r in finest}
+    if set(runs) != {"no", "yes"}:
+        return "(the two runs of the finest level did not both complete)"
+    direct, krylov = runs["no"], runs["yes"]
+    table = md_tables.table(("step", "-krylov no: SQP", "factorizations", "shifted", "-krylov yes: SQP", "GMRES", "factorizations",
+                             "shifted", "force, yes / no - 1"),
+                            [(k + 1, *[a[i] for i in (0, 2, 3)], *b, f"{fb / fa - 1:.1e}")
+                             for k, (a, b, fa, fb) in enumerate(zip(direct["per_step"], krylov["per_step"], direct["forces"], krylov["forces"]))])
+    return f"{table}\n\n{direct['level']}: wall {direct['wall_s']:.0f} s (-krylov no) and {krylov['wall_s']:.0f} s (-krylov yes): x{direct['wall_s'] / krylov['wall_s']:.2f}"
 
 
 A_TWO_CYLINDERS = 0.0775818960   # Hertz half-width of the default hertz_two_cylinders (m)
@@ -525,12 +556,14 @@ def main():
                         [(r["n"], r["ndof"], f"{r['penalty_entries']:.3g}", f"{r['penalty_per_unknown']:.0f}", f"{r['penalty_wall_s']:.1f}",
                           f"{r['nodal_entries']:.3g}", f"{r['nodal_per_unknown']:.0f}", f"{r['nodal_wall_s']:.1f}",
                           f"{r['ratio_per_unknown']:.2f}") for r in rubber_fill])
-    t8 = md_tables.table(("h", "DOFs", "SQP iterations per step", "factorizations", "mean (s)", "wall (s)", "wall / factorization",
-                         "factor entries per unknown", "peak RSS (MB)", "force at 0.2 R", "F / Hertz - 1 at 0.02 R"),
-                        [(r["level"], r["ndof"], " ".join(str(i) for i in r["iterations"]), r["factorizations"],
-                          f"{r['factorization_mean_s']:.2f}", f"{r['wall_s']:.0f}", f"{r['total_over_factorization']:.0f}",
-                          f"{r['per_unknown']:.0f}", f"{r['peak_rss_mb']:.0f}", f"{r['force']:.5f}",
-                          f"{r['force_small_depth_error']:.1e}") for r in rubber_indentation])
+    t8 = md_tables.table(("h", "-krylov", "DOFs", "SQP iterations per step", "factorizations", "mean (s)", "GMRES it.",
+                         "wall (s)", "wall / factorization", "factor entries per unknown", "peak RSS (MB)", "force at 0.2 R",
+                         "F / Hertz - 1 at 0.02 R"),
+                        [(r["level"], r["solver"], r["ndof"], " ".join(str(i) for i in r["iterations"]), r["factorizations"],
+                          f"{r['factorization_mean_s']:.2f}", r["krylov_iterations"], f"{r['wall_s']:.0f}",
+                          f"{r['total_over_factorization']:.0f}", f"{r['per_unknown']:.0f}", f"{r['peak_rss_mb']:.0f}",
+                          f"{r['force']:.5f}", f"{r['force_small_depth_error']:.1e}") for r in rubber_indentation])
+    t8b = indentation_steps_table(rubber_indentation)
     t9 = md_tables.table(("case", "DOFs", "mu 0: IPOPT it.", "wall (s)", "mu 0.3: IPOPT it.", "friction solves",
                          "load steps", "wall (s)", "iterations, mu 0.3 / mu 0", "wall, mu 0.3 / mu 0"),
                         [(r["case"], r["ndof"], r["plain_iterations"], f"{r['plain_wall_s']:.1f}", r["iterations"],
@@ -555,6 +588,8 @@ def main():
             f"3D rubber: factor entries of the nodal form's saddle point matrix against the element penalty form's, "
             f"3D Neo-Hookean block on its foundation, nu = 0.499\n\n{t7}\n\n"
             f"3D indentation (benchmarks/indentation.edp -dim 3, 10 steps to 0.2 R)\n\n{t8}\n\n"
+            f"3D indentation at the finest h, per load step: SQP iterations, GMRES iterations, factorizations and "
+            f"iterations on a shifted tangent, -krylov no (the default) against -krylov yes\n\n{t8b}\n\n"
             f"Friction (mu = 0.3) against the frictionless run of the same driver and mesh\n\n{t9}\n\n"
             f"Dynamics: the bar against a wall (Newmark, redistributed mass), per time step\n\n{t10}")
     print("\n" + text)
