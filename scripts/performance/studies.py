@@ -302,7 +302,7 @@ def rubber_3d_study(cube_ns, indentation_levels):
                                 "krylov_iterations": t["krylov_iterations"],
                                 "total_over_factorization": t["total"] / t["factorization_mean"] if t["factorization_mean"] > 0 else float("nan"),
                                 "per_unknown": s["solver"]["factor_entries_per_unknown"], "force": r["force"]["computed"],
-                                "forces": [step_force for step_force in read_column(f"{OUT}/indentation_3d_R{level}_{solver}/force_depth.csv", "force")],
+                                "forces": read_column(f"{OUT}/indentation_3d_R{level}_{solver}/force_depth.csv", "force"),
                                 "force_small_depth_error": r["force_small_depth"]["rel_error"]})
             print(f"indentation 3D R/{level} -krylov {solver}: {s['ndof']} dofs, {t['factorizations']} factorizations of "
                   f"{t['factorization_mean']:.2f} s, {t['krylov_iterations']} GMRES iterations, wall {wall:.0f} s, RSS {rss:.0f} MB", flush=True)
