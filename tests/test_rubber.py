@@ -427,7 +427,8 @@ def test_indentation_krylov():
     iterations add up to its totals. A planted error (a copy of the suite whose preconditioner's Schur
     block is scaled by 0.01, as if its factors were far staler than they are) makes GMRES miss its
     tolerance in some steps: those factorize afresh (more factorizations than without it) and the
-    forces are the same to 1e-6: never a wrong step."""
+    forces are the same to 1e-6: never a wrong step. The 3D Neo-Hookean block on its foundation with
+    -krylov yes lands on its exact homogeneous state (cube_case's bounds), on one factorization."""
     args = ["-dim", "3", "-h", "0.125"]
     direct = run_summary("indentation krylov: direct", "benchmarks/indentation.edp", args + ["-krylov", "no", "-reuse", "0"])
     krylov = run_summary("indentation krylov: krylov", "benchmarks/indentation.edp", args + ["-krylov", "yes"])
@@ -467,6 +468,12 @@ def test_indentation_krylov():
               and sum(x["krylov_iterations"] for x in steps) == s["timings"]["krylov_iterations"],
               f"{s['timings']}")
     check("indentation krylov: direct ran no GMRES", direct["timings"]["krylov_iterations"] == 0)
+    # the block on its foundation by the same path: its exact homogeneous state (cube_case's bounds)
+    label = "cube 3D neohookean on foundation -krylov yes"
+    cube = cube_case(label, ["-material", "neohookean", "-dim", "3", "-n", "3", "-foundation", "1", "-krylov", "yes"])
+    if cube:
+        check(f"{label}: GMRES ran, on one factorization (measured: 25 iterations)",
+              cube["timings"]["krylov_iterations"] > 0 and cube["timings"]["factorizations"] == 1, str(cube["timings"]))
 
 
 def test_small_strain_rubber():
