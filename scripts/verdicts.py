@@ -170,16 +170,19 @@ _add(["cattaneo"], ["shear_l2_rel_error"],
      Check("analytic", 3e-2, "value", note="L2 error of q against Cattaneo's traction: 3.5 % at a/30, 2.4 % at a/60, 0.75 % at a/120"))
 _add(["cattaneo_rigid", "cattaneo_rigid_incompressible"], ["stick_half_width"],
      Check("analytic", 3e-2, note="a rigid cylinder on a block at nu = 0.4999 (Dundurs' beta = 2e-4) or 0.5: Cattaneo's c; "
-                                  "measured 0.038 % and 0.040 % at a/60 (35 % for the nodal form with the cylinder's own "
+                                  "measured 0.019 % and 0.021 % at a/60 (35 % for the nodal form with the cylinder's own "
                                   "rows: docs/benchmarks/friction.md)"))
 _add(["cattaneo_rigid", "cattaneo_rigid_incompressible"], ["a"],
-     Check("analytic", 1e-2, note="Hertz's line contact on the block (0.045 % at a/60)"))
+     Check("analytic", 1e-2, note="Hertz's line contact on the block (0.026 % at a/60)"))
 _add(["cattaneo_rigid", "cattaneo_rigid_incompressible"], ["shear_l2_rel_error"],
-     Check("analytic", 5e-2, "value", note="L2 error of q against Cattaneo's traction: 2.6 %, 2.1 %, 1.9 % at a/30, a/60, a/120 "
-                                           "(nu = 0.4999); 3.0 %, 2.4 %, 2.2 % at nu = 0.5"))
-_add(["cattaneo", "cattaneo_hold", "cattaneo_sliding", "cattaneo_rigid", "cattaneo_rigid_incompressible"], ["normal_phase_shear"],
-     Check("info", note="the shear the normal load leaves, a node's largest, of p0 (none in Cattaneo's theory): the finite "
-                        "block's and the contact edge's nodes', 1.8e-2 at a/60, 2.0e-2 at a/120 (docs/benchmarks/friction.md)"))
+     Check("analytic", 5e-2, "value", note="L2 error of q against Cattaneo's traction: 1.9 %, 1.1 %, 0.62 % at a/30, a/60, "
+                                           "a/120 (nu = 0.4999); 2.5 %, 1.2 %, 0.76 % at nu = 0.5"))
+_add(["cattaneo", "cattaneo_hold", "cattaneo_sliding", "cattaneo_rigid"], ["normal_phase_shear"],
+     Check("info", note="the shear the normal load leaves, a node's largest, of p0 (none in Cattaneo's theory at beta = 0)"))
+_add(["cattaneo_rigid_incompressible"], ["normal_phase_shear"],
+     Check("analytic", 1e-2, "value", note="the shear the normal load leaves at beta = 0, a node's largest, of p0 (none in "
+                                           "Cattaneo's theory; the issue's 1e-2): the stick zone's answer to the surface "
+                                           "stretch of the block (finite and meshed), 8.2e-3 at a/60 (docs/benchmarks/friction.md)"))
 _add(["cattaneo_rigid_incompressible"], ["volume_balance_rel_error"],
      Check("balance", 1e-8, "value", note="the block's volume at nu = 0.5 (the stabilised form's constraint), of its volume"))
 _add(["cattaneo", "cattaneo_hold", "cattaneo_rigid", "cattaneo_rigid_incompressible"], ["tangential_force"], Check("exact", 1e-10, note="the applied Q (load control)"))
