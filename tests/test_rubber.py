@@ -350,6 +350,12 @@ def test_platen_block():
               verdict == "PASS", f"{err:.2e}")
 
 
+def depth_forces(folder):
+    """The indentation's force at each depth (its force_depth.csv)."""
+    with open(os.path.join(folder, "force_depth.csv")) as f:
+        return [float(row["force"]) for row in csv.DictReader(f)]
+
+
 @pytest.mark.heavy(seconds=49)
 def test_indentation():
     """Issue 25, the 3D rubber contact benchmark (benchmarks/indentation.edp): a rigid sphere pressed
@@ -399,11 +405,7 @@ def test_indentation():
                         ["-dim", "3", "-h", "0.125", "-reuse", "0"])
     if fresh is None:
         return
-    depth_forces = {}
-    for label in ("indentation 3D h=0.125", "indentation 3D h=0.125 reuse 0"):
-        with open(os.path.join(out(label), "force_depth.csv")) as f:
-            depth_forces[label] = [float(row["force"]) for row in csv.DictReader(f)]
-    reused, plain = depth_forces["indentation 3D h=0.125"], depth_forces["indentation 3D h=0.125 reuse 0"]
+    reused, plain = depth_forces(out("indentation 3D h=0.125")), depth_forces(out("indentation 3D h=0.125 reuse 0"))
     worst = max((abs(a - b) / abs(b) for a, b in zip(reused, plain)), default=1)
     check("indentation 3D h=0.125: the default (reuse 0.2) gives -reuse 0's force at every depth to 1e-6",
           len(reused) == len(plain) == 10 and worst <= 1e-6, f"{worst:.1e}")
@@ -447,13 +449,9 @@ def test_indentation_krylov():
     if direct is None or krylov is None or planted is None:
         return
 
-    def forces(folder):
-        with open(os.path.join(folder, "force_depth.csv")) as f:
-            return [float(row["force"]) for row in csv.DictReader(f)]
-
-    plain = forces(out("indentation krylov: direct"))
+    plain = depth_forces(out("indentation krylov: direct"))
     for label, folder in (("krylov", out("indentation krylov: krylov")), ("planted", o)):
-        other = forces(folder)
+        other = depth_forces(folder)
         worst = max((abs(a - b) / abs(b) for a, b in zip(other, plain)), default=1)
         check(f"indentation krylov: {label}: -reuse 0's force at every depth to 1e-6",
               len(other) == len(plain) == 10 and worst <= 1e-6, f"{worst:.1e}")
