@@ -274,6 +274,27 @@ def test_friction_mu_zero():
         check("-mu 0: no friction columns in pressure.csv", "shear" not in (friction_rows("hertz plane mu 0") or [{}])[0])
 
 
+def test_rigid_frictionless_reference():
+    """-mu 0 on Cattaneo's and Mindlin's rigid set-ups, the frictionless reference make bench times their
+    friction against: the normal load alone on the same mesh, exit 0, Hertz's a within the rigid set-ups'
+    verdict bound (1 %; Cattaneo's a/30: measured 0.057 %; Mindlin's default a/10: 0.26 %), the load P
+    applied to the run's -tol (1e-9: without friction's polish the contact forces are IPOPT's multipliers;
+    measured 1.3e-10 and 3e-14), friction recorded as none, and no tangential result."""
+    for label, script, args, bench in (
+            ("cattaneo rigid mu 0", CATTANEO, ["-setup", "rigid", "-h", "0.0206", "-mu", "0"], "cattaneo_rigid"),
+            ("mindlin rigid mu 0", "benchmarks/mindlin_sphere.edp", ["-setup", "rigid", "-mu", "0"], "mindlin_rigid")):
+        s = run_summary(label, script, args)
+        if s is None:
+            continue
+        r = s["results"]
+        bound = verdicts.bound(bench, "a")
+        check(f"{label}: Hertz's a within {bound:.0%}", r["a"]["rel_error"] <= bound, f"{r['a']['rel_error']:.2e}")
+        check(f"{label}: P applied (-tol 1e-9)", r["normal_force"]["rel_error"] <= 1e-9, f"{r['normal_force']['rel_error']:.1e}")
+        check(f"{label}: friction none, no tangential result",
+              s["parameters"].get("friction") == "none" and "tangential_force" not in r and "stick_half_width" not in r,
+              f"{s['parameters'].get('friction')}, {sorted(r)}")
+
+
 def test_oring_friction():
     """The O-ring between plates with mu = 0.3 (the benchmark, R/24; Neo-Hookean, the condensed SQP):
     Coulomb's law to round-off at every node (bound 1e-12, measured 2.4e-17; 6.6e-6 before Coulomb's
