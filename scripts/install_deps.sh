@@ -35,6 +35,9 @@ dpkg -s libopenblas0-pthread >/dev/null 2>&1 || missing+=(libopenblas0-pthread)
 # sequential MUMPS's headers and library, for the condensed solve's plugin (plugin/schur_condensation.cpp)
 dpkg -s libmumps-seq-dev >/dev/null 2>&1 || missing+=(libmumps-seq-dev)
 dpkg -s libmetis-dev >/dev/null 2>&1 || missing+=(libmetis-dev)
+# LAPACK to link the friction polish's dense KKT solve (plugin/dense_kkt.cpp: -llapack -lblas),
+# OpenBLAS's as at run time
+dpkg -s libopenblas-pthread-dev >/dev/null 2>&1 || missing+=(libopenblas-pthread-dev)
 # runs on several processes (docs/scaling.md): mpirun, mpicxx and the MPI MUMPS for plugin/mpi_bridge.cpp
 need mpirun openmpi-bin
 need mpicxx libopenmpi-dev
