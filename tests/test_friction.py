@@ -74,7 +74,7 @@ def stick_zone_rows(label):
     return list(csv.DictReader(open(path))) if os.path.exists(path) else []
 
 
-@pytest.mark.heavy(seconds=87)
+@pytest.mark.heavy(seconds=78)
 def test_cattaneo_rigid():
     """A rigid cylinder on a nearly or exactly incompressible block (issue 40), the default mesh a/60
     and block 10^4 a: Cattaneo's stick half-width within 3 % (measured 0.019 % at nu = 0.4999, 0.021 %
@@ -138,7 +138,7 @@ def test_cattaneo_rigid_normal_phase():
           None not in shears and shears[0] > shears[1] > shears[2], str(shears))
 
 
-@pytest.mark.heavy(seconds=175)
+@pytest.mark.heavy(seconds=64)
 def test_mindlin_sphere():
     """Two identical spheres (3D, the halves y >= 0), pressed and then sheared to Q = 0.8 mu P, the
     default mesh a/10: Mindlin's stick radius within the issue's 3 % (measured 2.6 % low; 3.3 % at a/8)
@@ -300,9 +300,9 @@ def test_polish_dense_kkt():
     UMFPACK's sparse solve (a copy of the suite with polishDenseEnabled = false), on the rubber punch
     (2D, the condensed SQP, Coulomb's unsymmetric systems) and the rigid sphere (3D, a/5, nu 0.5):
     every result the same to the runs' -tol, 1e-9 relative (the same systems to round-off, both refined
-    twice, which feeds
-    the next steps' IPOPT solves; measured 5.5e-16 on the punch, 1.8e-13 on the sphere), the dense
-    path used in the default and not in the copy, Coulomb's law to the verdicts' 1e-10 in both."""
+    twice, which feeds the next steps' IPOPT solves; measured 5.5e-16 on the punch, 1.8e-13 on the
+    sphere), the dense path used in the default and not in the copy, Coulomb's law to the verdicts'
+    1e-10 in both."""
     work, include = suite_copy("polish dense kkt umfpack")
     path = os.path.join(include, "solve", "friction_polish.idp")
     text = open(path).read()
