@@ -79,6 +79,17 @@ def suite_copy(name):
     return work, include
 
 
+def planted_suite(name, rel, old, new):
+    """A copy of include/ (suite_copy) with `old` replaced by `new` in include/<rel>: the work folder, and
+    whether `old` was there (a test checks it, so that a renamed line cannot make the copy the original)."""
+    work, include = suite_copy(name)
+    path = os.path.join(include, rel)
+    text = open(path).read()
+    with open(path, "w") as f:
+        f.write(text.replace(old, new))
+    return work, old in text
+
+
 def registered_obstacles(include_dir=os.path.join(ROOT, "include")):
     """The obstacle kinds listed in include/contact/obstacles.idp (read here, independently of FreeFEM)."""
     text = open(os.path.join(include_dir, "contact", "obstacles.idp")).read()

@@ -303,13 +303,9 @@ def test_polish_dense_kkt():
     twice, which feeds the next steps' IPOPT solves; measured 5.5e-16 on the punch, 1.8e-13 on the
     sphere), the dense path used in the default and not in the copy, Coulomb's law to the verdicts'
     1e-10 in both."""
-    work, include = suite_copy("polish dense kkt umfpack")
-    path = os.path.join(include, "solve", "friction_polish.idp")
-    text = open(path).read()
-    planted = text.replace("bool polishDenseEnabled = true;", "bool polishDenseEnabled = false;")
-    check("polish dense kkt: the switch is in the copy", planted != text)
-    with open(path, "w") as f:
-        f.write(planted)
+    work, planted = planted_suite("polish dense kkt umfpack", "solve/friction_polish.idp",
+                                  "bool polishDenseEnabled = true;", "bool polishDenseEnabled = false;")
+    check("polish dense kkt: the switch is in the copy", planted)
     for label, script, args in (
             ("punch", "tests/punch_squeeze.edp", ["-volumetric", "stabilised", "-mu", "0.3"]),
             ("rigid sphere", "benchmarks/mindlin_sphere.edp", ["-setup", "rigid", "-nu", "0.5", "-h", "0.0483", "-steps", "2"])):
