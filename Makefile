@@ -68,9 +68,10 @@ reserved-names:
 # Debian's packages, then the suite's plugins (each plugin/<name>.cpp says what it is for):
 # headless, which freefem++.pref loads; run_control (exit codes, wall clock), files (no shell),
 # fold_search (the fold guard), schur_condensation (the condensed solve), fast_assembly (the
-# energy's matrices and forces), dense_kkt (friction's polish), msh_loader (gmsh files) and
+# energy's matrices and forces), dense_kkt (friction's polish),
+# site_narrowing (friction's solve on its sites' dofs), msh_loader (gmsh files) and
 # vtu_writer (the results' .vtu), which include/ loads where they are used
-PLUGIN_NAMES = headless run_control files fold_search schur_condensation fast_assembly dense_kkt msh_loader vtu_writer
+PLUGIN_NAMES = headless run_control files fold_search schur_condensation fast_assembly dense_kkt site_narrowing msh_loader vtu_writer
 # and mpi_bridge, not a FreeFEM plugin: the MPI MUMPS and MPI calls that run_control and
 # schur_condensation open in their own symbol scope under FreeFem++-mpi (plugin/mpi_bridge.cpp)
 PLUGINS = $(PLUGIN_NAMES:%=plugin/%.so) plugin/mpi_bridge.so

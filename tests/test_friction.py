@@ -296,34 +296,26 @@ def test_rigid_frictionless_reference():
               f"{s['parameters'].get('friction')}, {sorted(r)}")
 
 
-def test_polish_dense_kkt():
-    """The polish's KKT systems by LAPACK's dense LU (plugin/dense_kkt.cpp, the default) against
-    UMFPACK's sparse solve (a copy of the suite with polishDenseEnabled = false), on the rubber punch
-    (2D, the condensed SQP, Coulomb's unsymmetric systems) and the rigid sphere (3D, a/5, nu 0.5):
-    every result the same to the runs' -tol, 1e-9 relative (the same systems to round-off, both refined
-    twice, which feeds the next steps' IPOPT solves; measured 5.5e-16 on the punch, 1.8e-13 on the
-    sphere), the dense path used in the default and not in the copy, Coulomb's law to the verdicts'
+def same_results_as_copy(tag, work, cases, statistic):
+    """Each case (label, script, args) run by the suite and by its planted copy in `work`: the copy's run
+    exits 0, the path the solver statistic `statistic` counts ran in the suite's run and not in the
+    copy's, every result the same to the runs' -tol, 1e-9 relative, and Coulomb's law to the verdicts'
     1e-10 in both."""
-    work, planted = planted_suite("polish dense kkt umfpack", "solve/friction_polish.idp",
-                                  "bool polishDenseEnabled = true;", "bool polishDenseEnabled = false;")
-    check("polish dense kkt: the switch is in the copy", planted)
-    for label, script, args in (
-            ("punch", "tests/punch_squeeze.edp", ["-volumetric", "stabilised", "-mu", "0.3"]),
-            ("rigid sphere", "benchmarks/mindlin_sphere.edp", ["-setup", "rigid", "-nu", "0.5", "-h", "0.0483", "-steps", "2"])):
-        dense = run_summary(f"polish dense kkt {label}", script, args)
-        o = out(f"polish dense kkt {label} umfpack")
+    for label, script, args in cases:
+        default = run_summary(f"{tag} {label}", script, args)
+        o = out(f"{tag} {label} copy")
         code, output, _ = run_driver(os.path.join(ROOT, script), args, o, cwd=work)
-        sparse = read_summary(o)
-        check(f"polish dense kkt: {label}: the UMFPACK run exits 0", code == 0 and sparse is not None,
+        other = read_summary(o)
+        check(f"{tag}: {label}: the copy's run exits 0", code == 0 and other is not None,
               f"exit {code}: {output.strip().splitlines()[-3:]}")
-        if dense is None or sparse is None:
+        if default is None or other is None:
             continue
-        check(f"polish dense kkt: {label}: the dense path ran in the default, not in the copy",
-              dense["solver"].get("dense_kkt_solves", 0) > 0 and "dense_kkt_solves" not in sparse["solver"],
-              f"{dense['solver'].get('dense_kkt_solves')} {sparse['solver'].get('dense_kkt_solves')}")
+        check(f"{tag}: {label}: {statistic} in the suite's run, not in the copy's",
+              default["solver"].get(statistic, 0) > 0 and statistic not in other["solver"],
+              f"{default['solver'].get(statistic)} {other['solver'].get(statistic)}")
         worst, name = 0, ""
-        for q, r in dense["results"].items():
-            a, b = r["computed"], sparse["results"].get(q, {}).get("computed")
+        for q, r in default["results"].items():
+            a, b = r["computed"], other["results"].get(q, {}).get("computed")
             if q in ("coulomb_violation", "force_balance_rel_error", "max_penetration", "volume_balance_rel_error"):
                 continue   # round-off measures, each within its bound below or in the run's own checks
             if b is None or not isinstance(a, (int, float)):
@@ -331,10 +323,41 @@ def test_polish_dense_kkt():
             d = abs(a - b) / max(abs(a), abs(b), 1e-300)
             if d > worst:
                 worst, name = d, q
-        check(f"polish dense kkt: {label}: every result the same to 1e-9", worst <= 1e-9, f"{worst:.1e} ({name})")
-        for s in (dense, sparse):
+        check(f"{tag}: {label}: every result the same to 1e-9", worst <= 1e-9, f"{worst:.1e} ({name})")
+        for s in (default, other):
             c = s["results"]["coulomb_violation"]["computed"]
-            check(f"polish dense kkt: {label}: Coulomb's law to 1e-10", c <= 1e-10, f"{c:.1e}")
+            check(f"{tag}: {label}: Coulomb's law to 1e-10", c <= 1e-10, f"{c:.1e}")
+
+
+# the rubber punch (2D, the condensed SQP, Coulomb's unsymmetric systems) and the rigid sphere (3D, a/5,
+# nu 0.5)
+PUNCH_AND_RIGID_SPHERE = (
+    ("punch", "tests/punch_squeeze.edp", ["-volumetric", "stabilised", "-mu", "0.3"]),
+    ("rigid sphere", "benchmarks/mindlin_sphere.edp", ["-setup", "rigid", "-nu", "0.5", "-h", "0.0483", "-steps", "2"]))
+
+
+def test_polish_dense_kkt():
+    """The polish's KKT systems by LAPACK's dense LU (plugin/dense_kkt.cpp, the default) against
+    UMFPACK's sparse solve (a copy of the suite with polishDenseEnabled = false), on the punch and the
+    rigid sphere: every result the same to the runs' -tol (the same systems to round-off, both refined
+    twice, which feeds the next steps' IPOPT solves; measured 9.2e-16 on the punch, 2.3e-13 on the
+    sphere), Coulomb's law to round-off in both (same_results_as_copy)."""
+    work, planted = planted_suite("polish dense kkt umfpack", "solve/friction_polish.idp",
+                                  "bool polishDenseEnabled = true;", "bool polishDenseEnabled = false;")
+    check("polish dense kkt: the switch is in the copy", planted)
+    same_results_as_copy("polish dense kkt", work, PUNCH_AND_RIGID_SPHERE, "dense_kkt_solves")
+
+
+def test_site_narrowing():
+    """Friction's solve on the rows' and the sites' dofs (solve/site_narrowing.idp, the default) against
+    the whole condensed problem (a copy of the suite with siteNarrowingEnabled = false), on the punch and
+    the rigid sphere: the dropped dofs are eliminated exactly (a dense Schur complement), so every result
+    is the same to the runs' -tol, 1e-9 relative (measured 7.4e-16 on the punch, 2.0e-13 on the sphere), and
+    Coulomb's law holds to round-off in both (same_results_as_copy)."""
+    work, planted = planted_suite("site narrowing off", "solve/site_narrowing.idp",
+                                  "bool siteNarrowingEnabled = true;", "bool siteNarrowingEnabled = false;")
+    check("site narrowing: the switch is in the copy", planted)
+    same_results_as_copy("site narrowing", work, PUNCH_AND_RIGID_SPHERE, "site_narrowings")
 
 
 def test_oring_friction():
