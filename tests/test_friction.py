@@ -138,7 +138,7 @@ def test_cattaneo_rigid_normal_phase():
           None not in shears and shears[0] > shears[1] > shears[2], str(shears))
 
 
-@pytest.mark.heavy(seconds=64)
+@pytest.mark.heavy(seconds=56)
 def test_mindlin_sphere():
     """Two identical spheres (3D, the halves y >= 0), pressed and then sheared to Q = 0.8 mu P, the
     default mesh a/10: Mindlin's stick radius within the issue's 3 % (measured 2.6 % low; 3.3 % at a/8)
