@@ -81,9 +81,11 @@ deps:
 
 # each with FreeFEM's ff-c++, its log in plugin/build_<name>.log. A plugin names the libraries it
 # links as FreeFEM's own plugins do, on a line "//ff-c++-LIBRARY-dep: metis mumps_seq"; their flags
-# come from FreeFEM's WHERE_LIBRARY-config (Debian's ff-c++ -auto cannot find that file itself)
+# come from FreeFEM's WHERE_LIBRARY-config (Debian's ff-c++ -auto cannot find that file itself);
+# libraries that file does not know (MUMPS's single precision) on a line "//ff-c++-LIBRARY-extra:"
 WHERE_LIBRARY = /usr/include/freefem++/WHERE_LIBRARY-config
-library_flags = $(foreach d,$(shell sed -n 's|^//ff-c++-LIBRARY-dep:||p' $(1)),$(shell sed -n 's|^$(d) LD ||p' $(WHERE_LIBRARY)))
+library_flags = $(foreach d,$(shell sed -n 's|^//ff-c++-LIBRARY-dep:||p' $(1)),$(shell sed -n 's|^$(d) LD ||p' $(WHERE_LIBRARY))) \
+                $(shell sed -n 's|^//ff-c++-LIBRARY-extra:||p' $(1))
 plugin/%.so: plugin/%.cpp
 	@cd plugin && ff-c++ $*.cpp $(call library_flags,$<) > build_$*.log 2>&1 || { cat build_$*.log; exit 1; }
 	@rm -f plugin/$*.o

@@ -1,4 +1,5 @@
 //ff-c++-LIBRARY-dep: metis mumps_seq
+//ff-c++-LIBRARY-extra: -lsmumps_seq
 // schur_condensation: the elastic problem condensed onto the contact dofs, by MUMPS's own Schur
 // complement (ICNTL(19)) and its reduction/expansion of right-hand sides (ICNTL(26)). Built by
 // `make` with ff-c++ against Debian's sequential MUMPS (libmumps-seq-dev) and METIS (libmetis-dev);
@@ -31,6 +32,12 @@
 //     entries in the factors, flops, and its negative pivots (MUMPS INFOG(12): the negative
 //     eigenvalues of the factorized matrix without its Schur block, by Sylvester's law of inertia).
 //   schurRelease(): frees MUMPS's factors.
+//   schurSinglePrecision(yes): the next factorizations in single precision (MUMPS's smumps), for a
+//     caller that only uses them as a model whose steps it checks (the SQP: docs/performance.md);
+//     returns whether they will be (not under MPI: the bridge's MUMPS is double). Its matrix,
+//     Schur block and solves are rounded to float inside the plugin; the caller sees doubles. A
+//     single precision factorization that fails is done again in double.
+//   schurIsSinglePrecision(): whether the live factors are single precision.
 //   schurProcessShares(entries, flops): the last factorization's entries in the factors held by each
 //     process and the flops of its elimination there (MUMPS's INFO(27) and RINFO(3), one per process
 //     in rank order; under FreeFem++ one of each, INFOG(29) and RINFOG(3)).
@@ -44,10 +51,12 @@
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
 #include <dmumps_c.h>
+#include <smumps_c.h>
 #include "mpi_bridge.hpp"
 #include <metis.h>
 #include <sys/time.h>
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace {
@@ -55,6 +64,14 @@ const int useCommWorld = -987654;   // MUMPS's sequential communicator stand-in
 
 struct Condensation {
   DMUMPS_STRUC_C id;
+  // single precision (schurSinglePrecision): the factorization in half the time and the solves in
+  // two thirds (3D indentation at R/32, 1.1e8 entries: 3.4-3.8 s against 6.4-6.6 s, 0.098 s
+  // against 0.155 s a reduction and expansion), the Schur block to 8e-7 and a solution to 3e-6
+  // (relative, against double's)
+  SMUMPS_STRUC_C sid;
+  bool single = false;        // the live instance is sid
+  bool wantSingle = false;    // the next factorizations' precision, as asked
+  std::vector<float> valuesSingle, schurSingle, rhsSingle, reducedSingle;
   bool alive = false;
   std::vector<int> rows, columns, schurList, pivotOrder;
   std::vector<double> values, schur, rhs, reduced;
@@ -67,8 +84,12 @@ struct Condensation {
   std::vector<double> processEntries, processFlops;  // INFO(27), RINFO(3) of every process after the last factorization
 
   bool host() const { return mpirank == 0; }
+  // f on the live MUMPS instance (double or single: the same fields)
+  template <class F> void live(F f) { if (single) f(sid); else f(id); }
   void call() {
-    if (bridge) bridge->mumps(&id); else dmumps_c(&id);
+    if (single) smumps_c(&sid);
+    else if (bridge) bridge->mumps(&id);
+    else dmumps_c(&id);
   }
   // process 0's values of v to every process
   void share(std::vector<double> &v) {
@@ -76,27 +97,45 @@ struct Condensation {
   }
   void release() {
     if (!alive) return;
-    id.job = -2;
+    live([](auto &m) { m.job = -2; });
     call();
     alive = false;
   }
   void quiet() {
-    id.icntl[0] = -1; id.icntl[1] = -1; id.icntl[2] = -1; id.icntl[3] = 0;
+    live([](auto &m) { m.icntl[0] = -1; m.icntl[1] = -1; m.icntl[2] = -1; m.icntl[3] = 0; });
   }
   // job 3 with ICNTL(26) = phase (1 reduce, 2 expand) on the right-hand side b
   int solvePhase(const KN<double> &b, int phase) {
     for (long k = 0; k < n; k++) rhs[k] = b[k];
-    id.rhs = rhs.data();
-    id.nrhs = 1;
-    id.lrhs = int(n);
-    id.redrhs = reduced.data();
-    id.lredrhs = int(nSchur);
-    id.icntl[25] = phase;
-    id.job = 3;
-    call();
-    id.icntl[25] = 0;
+    if (single) {
+      // b's Schur entries (the contact dofs': their reactions, large against the residual near
+      // the solution) enter the reduced right-hand side alone, b_c - H_ci H_ii^-1 b_i: added
+      // below in double, not rounded (rounded, a Newton step's residual stalled at 5e-11 against
+      // a target of 1.3e-11, 3D indentation at R/16) and not used by the expansion
+      for (long k = 0; k < n; k++) rhsSingle[k] = float(b[k]);
+      for (int v : schurList) rhsSingle[v - 1] = 0.f;
+      for (long k = 0; k < nSchur; k++) reducedSingle[k] = float(reduced[k]);
+      sid.rhs = rhsSingle.data(); sid.redrhs = reducedSingle.data();
+    } else {
+      id.rhs = rhs.data(); id.redrhs = reduced.data();
+    }
+    int info = 0;
+    live([&](auto &m) {
+      m.nrhs = 1;
+      m.lrhs = int(n);
+      m.lredrhs = int(nSchur);
+      m.icntl[25] = phase;
+      m.job = 3;
+      call();
+      m.icntl[25] = 0;
+      info = m.infog[0];
+    });
+    if (single) {
+      if (phase == 1) for (long k = 0; k < nSchur; k++) reduced[k] = reducedSingle[k] + b[schurList[k] - 1];
+      else for (long k = 0; k < n; k++) rhs[k] = rhsSingle[k];
+    }
     if (phase == 1) share(reduced); else share(rhs);   // centralized on process 0
-    return id.infog[0];
+    return info;
   }
 };
 Condensation condensation;
@@ -191,42 +230,74 @@ void nestedDissectionOrder(Condensation &c, const std::vector<int> &rows, const 
 
 // MUMPS's analysis and factorization of c's matrix with the Schur block, symmetric type sym;
 // returns INFOG(1). On failure MUMPS's instance is released.
+// The values (and the Schur block's storage) handed to the live instance: single precision's
+// rounded copies, or the doubles themselves.
+static void pointValues(Condensation &c) {
+  if (c.single) {
+    c.valuesSingle.assign(c.values.begin(), c.values.end());
+    c.schurSingle.assign(c.nSchur*c.nSchur, 0.f);
+    c.sid.a = c.valuesSingle.data();
+    c.sid.schur = c.schurSingle.data();
+  } else {
+    if (c.bridge) c.id.a_loc = c.values.data(); else c.id.a = c.values.data();
+    c.id.schur = c.schur.data();
+  }
+}
+
+// Single precision as asked, where it can hold the matrix: one process, and the largest entry
+// within 1e-30..1e30 (float's normal range is 1e-38..3e38: a matrix at another scale, unscaled SI
+// units, is factorized in double). Entries far below the largest are round-off (2e-31 in the 3D
+// indentation's first tangent at R/8) that float may flush to 0; a row that needed them fails the
+// factorization or the SQP's checks, which fall back to double.
+static bool singleFits(const Condensation &c) {
+  if (!c.wantSingle || c.bridge) return false;
+  double largest = 0;
+  for (double v : c.values) {
+    if (!std::isfinite(v)) return false;
+    largest = std::max(largest, std::fabs(v));
+  }
+  return largest >= 1e-30 && largest <= 1e30;
+}
+
 static int factorWith(Condensation &c, int sym) {
   c.release();
-  DMUMPS_STRUC_C &id = c.id;
-  id.comm_fortran = useCommWorld;   // MPI_COMM_WORLD for the MPI MUMPS
-  id.par = 1;                       // process 0 works too
-  id.sym = sym;
-  id.job = -1;
-  c.call();
-  c.alive = true;
-  c.quiet();
-  id.n = int(c.n);
-  if (c.bridge) {              // ICNTL(18) = 3: each process its own slice of the entries
-    id.icntl[17] = 3;
-    id.nnz_loc = (MUMPS_INT8)c.values.size();
-    id.irn_loc = c.rows.data(); id.jcn_loc = c.columns.data(); id.a_loc = c.values.data();
-  } else {
-    id.nnz = (MUMPS_INT8)c.values.size();
-    id.irn = c.rows.data(); id.jcn = c.columns.data(); id.a = c.values.data();
-  }
-  if (c.nSchur > 0) {
-    id.icntl[18] = 1;          // ICNTL(19): the Schur complement, centralized
-    id.size_schur = int(c.nSchur);
-    id.listvar_schur = c.schurList.data();
-    id.schur = c.schur.data();
-  }
-  id.perm_in = c.pivotOrder.data();
-  id.icntl[6] = 1;             // ICNTL(7): the pivot order given in PERM_IN
-  double t0 = clockNow();
-  id.job = 1;                  // analysis
-  c.call();
-  c.analysisTime = clockNow() - t0;
-  if (id.infog[0] >= 0) {
-    id.job = 2;                // factorization
+  c.single = singleFits(c);
+  int info = 0;
+  c.live([&](auto &id) {
+    id.comm_fortran = useCommWorld;   // MPI_COMM_WORLD for the MPI MUMPS
+    id.par = 1;                       // process 0 works too
+    id.sym = sym;
+    id.job = -1;
     c.call();
-  }
-  int info = id.infog[0];
+    c.alive = true;
+    c.quiet();
+    id.n = int(c.n);
+    if (c.bridge) {              // ICNTL(18) = 3: each process its own slice of the entries
+      id.icntl[17] = 3;
+      id.nnz_loc = (MUMPS_INT8)c.values.size();
+      id.irn_loc = c.rows.data(); id.jcn_loc = c.columns.data();
+    } else {
+      id.nnz = (MUMPS_INT8)c.values.size();
+      id.irn = c.rows.data(); id.jcn = c.columns.data();
+    }
+    if (c.nSchur > 0) {
+      id.icntl[18] = 1;          // ICNTL(19): the Schur complement, centralized
+      id.size_schur = int(c.nSchur);
+      id.listvar_schur = c.schurList.data();
+    }
+    pointValues(c);
+    id.perm_in = c.pivotOrder.data();
+    id.icntl[6] = 1;             // ICNTL(7): the pivot order given in PERM_IN
+    double t0 = clockNow();
+    id.job = 1;                  // analysis
+    c.call();
+    c.analysisTime = clockNow() - t0;
+    if (id.infog[0] >= 0) {
+      id.job = 2;                // factorization
+      c.call();
+    }
+    info = id.infog[0];
+  });
   if (info < 0) c.release();
   return info;
 }
@@ -280,15 +351,15 @@ static long schurFactor(Matrice_Creuse<double> *const &pK, KN<double> *const &pF
   int info = -1;
   // the same pattern as the last factorization (a tangent at a new state): new values, MUMPS's
   // analysis kept (O-ring plates, 1146 dofs: 11 ms -> ms per condensation)
+  int liveSym = c.single ? c.sid.sym : c.id.sym;
   bool samePattern = c.alive && c.n == n && c.nSchur == nSchur && schurList == c.schurList && rows == c.rows
-                     && columns == c.columns && !(c.indefinite && c.id.sym == 1);
+                     && columns == c.columns && !(c.indefinite && liveSym == 1);
   c.values.swap(values);
-  if (samePattern) {
+  bool samePrecision = c.single == singleFits(c);
+  if (samePattern && samePrecision) {
     c.analysisTime = 0;
-    if (c.bridge) c.id.a_loc = c.values.data(); else c.id.a = c.values.data();
-    c.id.job = 2;
-    c.call();
-    info = c.id.infog[0];
+    pointValues(c);
+    c.live([&](auto &id) { id.job = 2; c.call(); info = id.infog[0]; });
   }
   if (info < 0) {
     c.release();
@@ -311,19 +382,36 @@ static long schurFactor(Matrice_Creuse<double> *const &pK, KN<double> *const &pF
     info = c.indefinite ? -1 : factorWith(c, 1);
     if (info < 0) info = factorWith(c, 2);
   }
-  double t3 = clockNow();
-  DMUMPS_STRUC_C &id = c.id;
-  c.statistics[0] = t1 - t0; c.statistics[1] = c.analysisTime; c.statistics[2] = t3 - t1 - c.analysisTime;
-  c.statistics[3] = double(id.infog[28]);   // INFOG(29): entries in the factors
-  c.statistics[4] = id.rinfog[2];          // RINFOG(3): flops of the elimination
-  c.statistics[5] = double(id.infog[11]);  // INFOG(12): negative pivots
-  c.processEntries.assign(processes, double(id.infog[28]));
-  c.processFlops.assign(processes, id.rinfog[2]);
-  if (c.bridge) {   // INFO(27), RINFO(3): this process's
-    c.bridge->gather(double(id.info[26]), c.processEntries.data());
-    c.bridge->gather(id.rinfo[2], c.processFlops.data());
+  // single precision that failed, or whose Schur block overflowed: double
+  bool finite = true;
+  if (info >= 0 && c.single)   // (its lower triangle: the rest is MUMPS's workspace)
+    for (long i = 0; i < nSchur; i++)
+      for (long j = 0; j <= i; j++) finite = finite && std::isfinite(c.schurSingle[i*nSchur + j]);
+  if (c.single && (info < 0 || !finite)) {
+    c.wantSingle = false;
+    info = c.indefinite ? -1 : factorWith(c, 1);
+    if (info < 0) info = factorWith(c, 2);
+    c.wantSingle = true;
   }
+  double t3 = clockNow();
+  c.statistics[0] = t1 - t0; c.statistics[1] = c.analysisTime; c.statistics[2] = t3 - t1 - c.analysisTime;
+  c.live([&](auto &id) {
+    c.statistics[3] = double(id.infog[28]);   // INFOG(29): entries in the factors
+    c.statistics[4] = id.rinfog[2];          // RINFOG(3): flops of the elimination
+    c.statistics[5] = double(id.infog[11]);  // INFOG(12): negative pivots
+    c.processEntries.assign(processes, double(id.infog[28]));
+    c.processFlops.assign(processes, id.rinfog[2]);
+    if (c.bridge) {   // INFO(27), RINFO(3): this process's
+      c.bridge->gather(double(id.info[26]), c.processEntries.data());
+      c.bridge->gather(id.rinfo[2], c.processFlops.data());
+    }
+  });
   if (info < 0) return info;
+  if (c.single) {
+    c.schur.assign(c.schurSingle.begin(), c.schurSingle.end());
+    c.rhsSingle.assign(n, 0.f);
+    c.reducedSingle.assign(nSchur, 0.f);
+  }
   c.share(c.schur);   // centralized on process 0
   // a symmetric matrix's Schur block comes back as its lower triangle by rows (ICNTL(19) = 1);
   // the other holds MUMPS's workspace, not zeros
@@ -395,6 +483,15 @@ static long schurRelease() {
   return 0;
 }
 
+static bool schurSinglePrecision(const bool &yes) {
+  condensation.wantSingle = yes && !mpiBridge();
+  return condensation.wantSingle;
+}
+
+static bool schurIsSinglePrecision() {
+  return condensation.alive && condensation.single;
+}
+
 static void init() {
   Global.Add("schurFactor", "(", new OneOperator4_<long, Matrice_Creuse<double> *, KN<double> *, KN<long> *, KNM<double> *>(schurFactor));
   Global.Add("schurReduce", "(", new OneOperator2_<long, KN<double> *, KN<double> *>(schurReduce));
@@ -404,6 +501,8 @@ static void init() {
   Global.Add("schurIndefinite", "(", new OneOperator1_<long, bool>(schurIndefinite));
   Global.Add("schurVariableNodes", "(", new OneOperator1_<long, KN<long> *>(schurVariableNodes));
   Global.Add("schurRelease", "(", new OneOperator0<long>(schurRelease));
+  Global.Add("schurSinglePrecision", "(", new OneOperator1_<bool, bool>(schurSinglePrecision));
+  Global.Add("schurIsSinglePrecision", "(", new OneOperator0<bool>(schurIsSinglePrecision));
 }
 
 LOADFUNC(init)

@@ -39,6 +39,7 @@ CASES = [
     (PLANE, ["-R", "0"], "-R"),
     (PLANE, ["-condense", "maybe"], "-condense"),
     (PLANE, ["-krylov", "maybe"], "-krylov"),
+    (PLANE, ["-factors", "half"], "-factors"),
     (PLANE, ["-reuse", "1"], "-reuse"),
     (PLANE, ["-E", "-2e9"], "-E"),
     (PLANE, ["-pressure", "0"], "-pressure"),

@@ -470,6 +470,47 @@ def test_indentation_krylov():
               cube["timings"]["krylov_iterations"] > 0 and cube["timings"]["factorizations"] == 1, str(cube["timings"]))
 
 
+
+def test_single_precision_factors():
+    """Issue 43: the SQP's factorizations in single precision (-factors auto, the default on the 3D
+    saddle point path: solve/sqp.idp). The plugin against double on a known problem
+    (single_factors_check.edp: its bounds there). The 3D indentation at R/8 with the default
+    against -factors double: the same force at every depth to the issue's 1e-6 (both stop where
+    each free dof's residual is below -tol, 1e-8, of the force scale; measured 3.8e-11 at R/16),
+    every factorization of the default single and none of double's. A planted rejection (a copy
+    whose every model on fresh single precision factors fails) is made again on double factors:
+    one single factorization, the rejection reported, exit 0 and the same forces: never a wrong
+    step."""
+    check_script_cases("single_factors_check", 7, prefix="single_factors_check case=")
+    args = ["-dim", "3", "-h", "0.125"]
+    auto = run_summary("indentation factors: auto", "benchmarks/indentation.edp", args)
+    double = run_summary("indentation factors: double", "benchmarks/indentation.edp", args + ["-factors", "double"])
+    work, in_copy = planted_suite("indentation factors planted", "solve/sqp.idp",
+                                  "      if (status != 0 && freshSingle) { sqpRejectSingle }",
+                                  "      if (freshSingle) status = 1;\n      if (status != 0 && freshSingle) { sqpRejectSingle }")
+    check("indentation factors: the planted rejection is in the copy", in_copy)
+    o = out("indentation factors: planted")
+    code, output, _ = run_driver(os.path.join(ROOT, "benchmarks", "indentation.edp"), args, o, cwd=work)
+    planted = read_summary(o)
+    check("indentation factors: the planted run exits 0 with its summary", code == 0 and planted is not None,
+          f"exit {code}: {output.strip().splitlines()[-3:]}")
+    if auto is None or double is None or planted is None:
+        return
+    plain = depth_forces(out("indentation factors: double"))
+    for label, folder in (("auto", out("indentation factors: auto")), ("planted", o)):
+        other = depth_forces(folder)
+        worst = max((abs(a - b) / abs(b) for a, b in zip(other, plain)), default=1)
+        check(f"indentation factors: {label}: -factors double's force at every depth to 1e-6",
+              len(other) == len(plain) == 10 and worst <= 1e-6, f"{worst:.1e}")
+    single = [s["solver"].get("single_precision_factorizations", -1) for s in (auto, double, planted)]
+    total = [s["timings"]["factorizations"] for s in (auto, double, planted)]
+    check("indentation factors: every factorization single by default, none with -factors double, one planted",
+          single[0] == total[0] > 0 and single[1] == 0 and single[2] == 1, f"single {single} of {total}")
+    check("indentation factors: the planted run reports the rejection, the others none",
+          planted["solver"].get("single_precision_rejected") == 1
+          and "single_precision_rejected" not in auto["solver"], str(planted["solver"]))
+
+
 def test_small_strain_rubber():
     """J - 1 and the diagonal of Grad u kept without cancellation (body/kinematics.idp): the nearly
     incompressible cube at the smallest strain core/ranges.idp admits, 1e-5, converges to its exact
