@@ -356,6 +356,38 @@ def depth_forces(folder):
         return [float(row["force"]) for row in csv.DictReader(f)]
 
 
+def depth_force_gap(folder, reference):
+    """The largest relative difference of the indentation's forces in `folder` from `reference` (a
+    list of ten), 1 when either is not ten depths long."""
+    other = depth_forces(folder)
+    if not len(other) == len(reference) == 10:
+        return 1
+    return max(abs(a - b) / abs(b) for a, b in zip(other, reference))
+
+
+def check_depth_forces(prefix, reference, runs, what):
+    """Each (label, folder) of `runs` gives the force of the indentation in `reference` at every depth
+    to the issue 43's 1e-6 (relative)."""
+    plain = depth_forces(reference)
+    for label, folder in runs:
+        worst = depth_force_gap(folder, plain)
+        check(f"{prefix}: {label}: {what}'s force at every depth to 1e-6", worst <= 1e-6, f"{worst:.1e}")
+
+
+def planted_indentation(label, rel, old, new, args):
+    """The indentation run with `args` in a copy of the suite whose include/<rel> has `old` replaced
+    by `new` (planted_suite): checks that the plant is there and that the run exits 0 with its
+    summary; returns (summary or None, its output folder)."""
+    work, in_copy = planted_suite(label, rel, old, new)
+    check(f"{label}: the plant is in the copy", in_copy)
+    o = out(label + " run")
+    code, output, _ = run_driver(os.path.join(ROOT, "benchmarks", "indentation.edp"), args, o, cwd=work)
+    summary = read_summary(o)
+    check(f"{label}: the run exits 0 with its summary", code == 0 and summary is not None,
+          f"exit {code}: {output.strip().splitlines()[-3:]}")
+    return summary, o
+
+
 @pytest.mark.heavy(seconds=49)
 def test_indentation():
     """Issue 25, the 3D rubber contact benchmark (benchmarks/indentation.edp): a rigid sphere pressed
@@ -438,23 +470,14 @@ def test_indentation_krylov():
     direct = run_summary("indentation krylov: direct", "benchmarks/indentation.edp",
                          args + ["-krylov", "no", "-reuse", "0", "-tol", "1e-10"])
     krylov = run_summary("indentation krylov: krylov", "benchmarks/indentation.edp", args + ["-krylov", "yes"])
-    work, in_copy = planted_suite("indentation krylov planted", "solve/krylov_step.idp",
-                                  "real krylovPlantedError = 1;", "real krylovPlantedError = 0.01;")
-    check("indentation krylov: the planted error is in the copy", in_copy)
-    o = out("indentation krylov: planted")
-    code, output, _ = run_driver(os.path.join(ROOT, "benchmarks", "indentation.edp"), args + ["-krylov", "yes"], o, cwd=work)
-    planted = read_summary(o)
-    check("indentation krylov: the planted run exits 0 with its summary", code == 0 and planted is not None,
-          f"exit {code}: {output.strip().splitlines()[-3:]}")
+    planted, o = planted_indentation("indentation krylov planted", "solve/krylov_step.idp",
+                                     "real krylovPlantedError = 1;", "real krylovPlantedError = 0.01;",
+                                     args + ["-krylov", "yes"])
     if direct is None or krylov is None or planted is None:
         return
 
-    plain = depth_forces(out("indentation krylov: direct"))
-    for label, folder in (("krylov", out("indentation krylov: krylov")), ("planted", o)):
-        other = depth_forces(folder)
-        worst = max((abs(a - b) / abs(b) for a, b in zip(other, plain)), default=1)
-        check(f"indentation krylov: {label}: -reuse 0's force at every depth to 1e-6",
-              len(other) == len(plain) == 10 and worst <= 1e-6, f"{worst:.1e}")
+    check_depth_forces("indentation krylov", out("indentation krylov: direct"),
+                       (("krylov", out("indentation krylov: krylov")), ("planted", o)), "-reuse 0")
     counts = [s["timings"]["factorizations"] for s in (direct, krylov, planted)]
     check("indentation krylov: factorizations: krylov < direct -reuse 0, and the planted run factorizes more than krylov",
           counts[1] < counts[0] and counts[2] > counts[1], str(counts))
@@ -489,23 +512,14 @@ def test_single_precision_factors():
     args = ["-dim", "3", "-h", "0.125"]
     auto = run_summary("indentation factors: auto", "benchmarks/indentation.edp", args)
     double = run_summary("indentation factors: double", "benchmarks/indentation.edp", args + ["-factors", "double"])
-    work, in_copy = planted_suite("indentation factors planted", "solve/sqp.idp",
-                                  "      if (status != 0 && freshSingle) { sqpRejectSingle }",
-                                  "      if (freshSingle) status = 1;\n      if (status != 0 && freshSingle) { sqpRejectSingle }")
-    check("indentation factors: the planted rejection is in the copy", in_copy)
-    o = out("indentation factors: planted")
-    code, output, _ = run_driver(os.path.join(ROOT, "benchmarks", "indentation.edp"), args, o, cwd=work)
-    planted = read_summary(o)
-    check("indentation factors: the planted run exits 0 with its summary", code == 0 and planted is not None,
-          f"exit {code}: {output.strip().splitlines()[-3:]}")
+    planted, o = planted_indentation("indentation factors planted", "solve/sqp.idp",
+                                     "      if (status != 0 && freshSingle) { sqpRejectSingle }",
+                                     "      if (freshSingle) status = 1;\n      if (status != 0 && freshSingle) { sqpRejectSingle }",
+                                     args)
     if auto is None or double is None or planted is None:
         return
-    plain = depth_forces(out("indentation factors: double"))
-    for label, folder in (("auto", out("indentation factors: auto")), ("planted", o)):
-        other = depth_forces(folder)
-        worst = max((abs(a - b) / abs(b) for a, b in zip(other, plain)), default=1)
-        check(f"indentation factors: {label}: -factors double's force at every depth to 1e-6",
-              len(other) == len(plain) == 10 and worst <= 1e-6, f"{worst:.1e}")
+    check_depth_forces("indentation factors", out("indentation factors: double"),
+                       (("auto", out("indentation factors: auto")), ("planted", o)), "-factors double")
     single = [s["solver"].get("single_precision_factorizations", -1) for s in (auto, double, planted)]
     total = [s["timings"]["factorizations"] for s in (auto, double, planted)]
     check("indentation factors: every factorization single by default, none with -factors double, one planted",
@@ -528,23 +542,14 @@ def test_reduced_by_last_set():
     (balance, penetration) pass (exit 0)."""
     args = ["-dim", "3", "-h", "0.125"]
     by_set = run_summary("indentation last set", "benchmarks/indentation.edp", args)
-    work, in_copy = planted_suite("indentation last set off", "solve/reduced_problem.idp",
-                                  "int lastSetPasses = 3;", "int lastSetPasses = 0;")
-    check("indentation last set: the switch is in the copy", in_copy)
-    runs = {}
+    runs, folders = {}, {}
     for label, extra in (("off", []), ("off tight", ["-tol", "1e-10"])):
-        o = out(f"indentation last set: {label}")
-        code, output, _ = run_driver(os.path.join(ROOT, "benchmarks", "indentation.edp"), args + extra, o, cwd=work)
-        runs[label] = read_summary(o)
-        check(f"indentation last set: the run without it ({label}) exits 0 with its summary",
-              code == 0 and runs[label] is not None, f"exit {code}: {output.strip().splitlines()[-3:]}")
+        runs[label], folders[label] = planted_indentation(f"indentation last set {label}", "solve/reduced_problem.idp",
+                                                          "int lastSetPasses = 3;", "int lastSetPasses = 0;", args + extra)
     if by_set is None or None in runs.values():
         return
-    tight = depth_forces(out("indentation last set: off tight"))
-    def distance(folder):
-        other = depth_forces(folder)
-        return max((abs(a - b) / abs(b) for a, b in zip(other, tight)), default=1) if len(other) == len(tight) == 10 else 1
-    mine, ipopt = distance(out("indentation last set")), distance(out("indentation last set: off"))
+    tight = depth_forces(folders["off tight"])
+    mine, ipopt = depth_force_gap(out("indentation last set"), tight), depth_force_gap(folders["off"], tight)
     check("indentation last set: the default within 1e-6 of IPOPT at -tol 1e-10 at every depth, no farther than IPOPT at 1e-8",
           mine <= 1e-6 and mine <= ipopt, f"{mine:.1e} against IPOPT's {ipopt:.1e}")
     served = (by_set["solver"].get("last_set_solves", 0), runs["off"]["solver"].get("last_set_solves", 0))
