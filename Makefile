@@ -68,7 +68,7 @@ reserved-names:
 # Debian's packages, then the suite's plugins (each plugin/<name>.cpp says what it is for):
 # headless, which freefem++.pref loads; run_control (exit codes, wall clock), files (no shell),
 # fold_search (the fold guard), schur_condensation (the condensed solve), fast_assembly (the
-# energy's matrices and forces), dense_kkt (friction's polish),
+# energy's matrices and forces), dense_kkt (the contact sets' KKT systems),
 # site_narrowing (friction's solve on its sites' dofs), msh_loader (gmsh files) and
 # vtu_writer (the results' .vtu), which include/ loads where they are used
 PLUGIN_NAMES = headless run_control files fold_search schur_condensation fast_assembly dense_kkt site_narrowing msh_loader vtu_writer

@@ -539,7 +539,10 @@ def test_reduced_by_last_set():
     answer at 1e-10), which the exact set does not (5.0e-9): the default is within the issue's 1e-6 of
     the tight reference at every depth and no farther from it than IPOPT at 1e-8. The set serves
     models by default and none in the copy, at no more factorizations; the runs' own checks
-    (balance, penetration) pass (exit 0)."""
+    (balance, penetration) pass (exit 0). Models on fresh factors whose S is positive definite take
+    the set too (more solves by the set than reused models), on S's Cholesky factor
+    (dense_kkt_check.edp: its bounds there)."""
+    check_script_cases("dense_kkt_check", 6, prefix="dense_kkt_check case=")
     args = ["-dim", "3", "-h", "0.125"]
     by_set = run_summary("indentation last set", "benchmarks/indentation.edp", args)
     runs, folders = {}, {}
@@ -555,6 +558,9 @@ def test_reduced_by_last_set():
     served = (by_set["solver"].get("last_set_solves", 0), runs["off"]["solver"].get("last_set_solves", 0))
     check("indentation last set: the set served models by default, none in the copy", served[0] > 0 and served[1] == 0,
           str(served))
+    reused = by_set["solver"].get("reused_factorizations", 0)
+    check("indentation last set: models on fresh factors served too (more set solves than reused models)",
+          served[0] > reused, f"{served[0]} set solves, {reused} reused models")
     counts = (by_set["timings"]["factorizations"], runs["off"]["timings"]["factorizations"])
     check("indentation last set: no more factorizations than without it", counts[0] <= counts[1], str(counts))
 
