@@ -40,6 +40,8 @@ CASES = [
     (PLANE, ["-condense", "maybe"], "-condense"),
     (PLANE, ["-krylov", "maybe"], "-krylov"),
     (PLANE, ["-factors", "half"], "-factors"),
+    (PLANE, ["-anderson", "11"], "-anderson"),
+    (PLANE, ["-anderson", "1.5"], "-anderson"),
     (PLANE, ["-reuse", "1"], "-reuse"),
     (PLANE, ["-E", "-2e9"], "-E"),
     (PLANE, ["-pressure", "0"], "-pressure"),
