@@ -91,7 +91,7 @@ plugin/%.so: plugin/%.cpp
 	@rm -f plugin/$*.o
 plugin/run_control.so plugin/schur_condensation.so: plugin/mpi_bridge.hpp
 plugin/mpi_bridge.so: plugin/mpi_bridge.cpp
-	@mpicxx -shared -fPIC -O2 -o $@ $< -ldmumps -lmumps_common > plugin/build_mpi_bridge.log 2>&1 || { cat plugin/build_mpi_bridge.log; exit 1; }
+	@mpicxx -shared -fPIC -O2 -o $@ $< -ldmumps -lsmumps -lmumps_common > plugin/build_mpi_bridge.log 2>&1 || { cat plugin/build_mpi_bridge.log; exit 1; }
 
 clean:
 	rm -rf results plugin/*.so plugin/build_*.log

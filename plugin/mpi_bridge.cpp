@@ -13,12 +13,14 @@
 //
 //   mpiBridgeMumps(id): the MPI dmumps_c on a DMUMPS_STRUC_C (the same header, dmumps_c.h, for both
 //     builds); returns INFOG(1).
+//   mpiBridgeMumpsSingle(id): the MPI smumps_c (single precision) on an SMUMPS_STRUC_C.
 //   mpiBridgeBroadcast(data, n): n doubles from process 0 to every process.
 //   mpiBridgeGather(value, all): every process's value, in rank order, on every process.
 //   mpiBridgeBarrier(): every process waits for the others.
 //   mpiBridgeProcesses(): the processes in MPI_COMM_WORLD (MUMPS's communicator here).
 #include <mpi.h>
 #include <dmumps_c.h>
+#include <smumps_c.h>
 #include <climits>
 
 extern "C" {
@@ -26,6 +28,12 @@ extern "C" {
 int mpiBridgeMumps(void *id) {
   DMUMPS_STRUC_C *mumps = static_cast<DMUMPS_STRUC_C *>(id);
   dmumps_c(mumps);
+  return mumps->infog[0];
+}
+
+int mpiBridgeMumpsSingle(void *id) {
+  SMUMPS_STRUC_C *mumps = static_cast<SMUMPS_STRUC_C *>(id);
+  smumps_c(mumps);
   return mumps->infog[0];
 }
 

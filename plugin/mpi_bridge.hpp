@@ -15,6 +15,7 @@ extern long mpisize, mpirank;   // FreeFEM's: the processes of this run and this
 
 struct MpiBridge {
   int (*mumps)(void *id);
+  int (*mumpsSingle)(void *id);
   void (*broadcast)(double *data, long n);
   void (*gather)(double value, double *all);
   void (*barrier)();
@@ -39,11 +40,12 @@ inline const MpiBridge *mpiBridge() {
   const char *missing = library ? nullptr : dlerror();
   if (library) {
     bridge.mumps = (int (*)(void *))dlsym(library, "mpiBridgeMumps");
+    bridge.mumpsSingle = (int (*)(void *))dlsym(library, "mpiBridgeMumpsSingle");
     bridge.broadcast = (void (*)(double *, long))dlsym(library, "mpiBridgeBroadcast");
     bridge.gather = (void (*)(double, double *))dlsym(library, "mpiBridgeGather");
     bridge.barrier = (void (*)())dlsym(library, "mpiBridgeBarrier");
     bridge.processes = (int (*)())dlsym(library, "mpiBridgeProcesses");
-    if (!bridge.mumps || !bridge.broadcast || !bridge.gather || !bridge.barrier || !bridge.processes) missing = "a call is missing";
+    if (!bridge.mumps || !bridge.mumpsSingle || !bridge.broadcast || !bridge.gather || !bridge.barrier || !bridge.processes) missing = "a call is missing";
   }
   if (missing) {
     if (mpirank == 0) fprintf(stdout, "error: the MPI run cannot open %s (%s): run `make` to build it\n", path.c_str(), missing);

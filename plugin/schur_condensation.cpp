@@ -34,9 +34,9 @@
 //   schurRelease(): frees MUMPS's factors.
 //   schurSinglePrecision(yes): the next factorizations in single precision (MUMPS's smumps), for a
 //     caller that only uses them as a model whose steps it checks (the SQP: docs/performance.md);
-//     returns whether they will be (not under MPI: the bridge's MUMPS is double). Its matrix,
-//     Schur block and solves are rounded to float inside the plugin; the caller sees doubles. A
-//     single precision factorization that fails is done again in double.
+//     returns `yes` (under MPI the bridge's smumps). Its matrix, Schur block and solves are
+//     rounded to float inside the plugin; the caller sees doubles. A single precision
+//     factorization that fails, or a matrix float cannot hold, is done in double.
 //   schurIsSinglePrecision(): whether the live factors are single precision.
 //   schurProcessShares(entries, flops): the last factorization's entries in the factors held by each
 //     process and the flops of its elimination there (MUMPS's INFO(27) and RINFO(3), one per process
@@ -87,7 +87,8 @@ struct Condensation {
   // f on the live MUMPS instance (double or single: the same fields)
   template <class F> void live(F f) { if (single) f(sid); else f(id); }
   void call() {
-    if (single) smumps_c(&sid);
+    if (single && bridge) bridge->mumpsSingle(&sid);
+    else if (single) smumps_c(&sid);
     else if (bridge) bridge->mumps(&id);
     else dmumps_c(&id);
   }
@@ -236,7 +237,7 @@ static void pointValues(Condensation &c) {
   if (c.single) {
     c.valuesSingle.assign(c.values.begin(), c.values.end());
     c.schurSingle.assign(c.nSchur*c.nSchur, 0.f);
-    c.sid.a = c.valuesSingle.data();
+    if (c.bridge) c.sid.a_loc = c.valuesSingle.data(); else c.sid.a = c.valuesSingle.data();
     c.sid.schur = c.schurSingle.data();
   } else {
     if (c.bridge) c.id.a_loc = c.values.data(); else c.id.a = c.values.data();
@@ -244,19 +245,37 @@ static void pointValues(Condensation &c) {
   }
 }
 
-// Single precision as asked, where it can hold the matrix: one process, and the largest entry
-// within 1e-30..1e30 (float's normal range is 1e-38..3e38: a matrix at another scale, unscaled SI
-// units, is factorized in double). Entries far below the largest are round-off (2e-31 in the 3D
-// indentation's first tangent at R/8) that float may flush to 0; a row that needed them fails the
-// factorization or the SQP's checks, which fall back to double.
+// Every process's verdict, the same on all: true when `mine` is true on every process (one process:
+// mine).
+static bool onEveryProcess(const Condensation &c, bool mine) {
+  if (!c.bridge) return mine;
+  std::vector<double> all(mpisize);
+  c.bridge->gather(mine ? 1. : 0., all.data());
+  return std::all_of(all.begin(), all.end(), [](double v) { return v == 1.; });
+}
+
+// Single precision as asked, where it can hold the matrix: its largest entry (over every
+// process's slice under MPI) within 1e-30..1e30 (float's normal range is 1e-38..3e38: a matrix at
+// another scale, unscaled SI units, is factorized in double). Entries far below the largest are
+// round-off (2e-31 in the 3D indentation's first tangent at R/8) that float may flush to 0; a row
+// that needed them fails the factorization or the SQP's checks, which fall back to double.
 static bool singleFits(const Condensation &c) {
-  if (!c.wantSingle || c.bridge) return false;
+  if (!c.wantSingle) return false;
   double largest = 0;
+  bool finite = true;
   for (double v : c.values) {
-    if (!std::isfinite(v)) return false;
-    largest = std::max(largest, std::fabs(v));
+    if (!std::isfinite(v)) finite = false;
+    else largest = std::max(largest, std::fabs(v));
   }
-  return largest >= 1e-30 && largest <= 1e30;
+  if (c.bridge) {   // the largest of all, and -1 where a process holds a non-finite entry
+    std::vector<double> all(mpisize);
+    c.bridge->gather(finite ? largest : -1., all.data());
+    for (double v : all) {
+      if (v < 0) finite = false;
+      largest = std::max(largest, v);
+    }
+  }
+  return finite && largest >= 1e-30 && largest <= 1e30;
 }
 
 static int factorWith(Condensation &c, int sym) {
@@ -382,11 +401,14 @@ static long schurFactor(Matrice_Creuse<double> *const &pK, KN<double> *const &pF
     info = c.indefinite ? -1 : factorWith(c, 1);
     if (info < 0) info = factorWith(c, 2);
   }
-  // single precision that failed, or whose Schur block overflowed: double
+  // single precision that failed, or whose Schur block overflowed: double (under MPI the block is
+  // process 0's, and every process follows its verdict)
   bool finite = true;
-  if (info >= 0 && c.single)   // (its lower triangle: the rest is MUMPS's workspace)
+  if (info >= 0 && c.single) {   // (its lower triangle: the rest is MUMPS's workspace)
     for (long i = 0; i < nSchur; i++)
       for (long j = 0; j <= i; j++) finite = finite && std::isfinite(c.schurSingle[i*nSchur + j]);
+    finite = onEveryProcess(c, finite);
+  }
   if (c.single && (info < 0 || !finite)) {
     c.wantSingle = false;
     info = c.indefinite ? -1 : factorWith(c, 1);
@@ -484,7 +506,7 @@ static long schurRelease() {
 }
 
 static bool schurSinglePrecision(const bool &yes) {
-  condensation.wantSingle = yes && !mpiBridge();
+  condensation.wantSingle = yes;
   return condensation.wantSingle;
 }
 
