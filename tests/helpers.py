@@ -47,11 +47,11 @@ def run_summary(label, script, args):
     return s
 
 
-def check_script_cases(name, expected, prefix=None):
-    """Runs tests/<name>.edp, which prints one '<name> dim=... PASS|FAIL' line per case (or one line
-    starting with `prefix` and ending in PASS or FAIL) and exits 1 on a failure: each line is a
-    check, and so are the count and the exit code."""
-    code, output, _ = run_driver(f"tests/{name}.edp", [], None)
+def check_script_cases(name, expected, prefix=None, processes=1):
+    """Runs tests/<name>.edp (on `processes` MPI processes when > 1), which prints one '<name>
+    dim=... PASS|FAIL' line per case (or one line starting with `prefix` and ending in PASS or FAIL)
+    and exits 1 on a failure: each line is a check, and so are the count and the exit code."""
+    code, output, _ = run_driver(f"tests/{name}.edp", [], None, processes=processes)
     if prefix is None:
         lines = [l for l in output.splitlines() if l.startswith(f"{name} dim=")]
     else:

@@ -78,6 +78,13 @@ def test_mpi_equals_sequential():
                   single == total and min(total) > 0, f"single {single} of {total}")
 
 
+def test_mpi_single_precision_factors():
+    """single_factors_check.edp on 2 processes: the bridge's single precision factors against its
+    double ones to that script's bounds, each case printed once, and its range guard (a matrix beyond
+    float's range factorized in double) decided alike on both processes' slices."""
+    check_script_cases("single_factors_check", 7, prefix="single_factors_check case=", processes=2)
+
+
 def test_mpi_refusals():
     """What cannot share its work under MPI says so in one error line and exits 2 (the issue's
     rule): a run that cannot be condensed (-condense no), plain Newton (-solver newton), and the
