@@ -18,7 +18,6 @@
 // or > 0 when the system is singular (x and m untouched); -1 when the sizes differ.
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
-#include <algorithm>
 #include <vector>
 
 extern "C" {
@@ -36,6 +35,36 @@ MatriceMorse<double> *morse(Matrice_Creuse<double> *const &p) {
   return A;
 }
 }  // namespace
+
+// Two steps of iterative refinement of z = [x; m] for [S B; C 0] z = [f; d] (B null: C^T), each
+// correction from `solve` on the same factors (in place on the residual, n + nc entries; false when
+// it fails), as UMFPACK takes by default (without them the rigid sphere's Coulomb check read
+// 5.3e-14 against UMFPACK's 4.5e-17). Then x and m receive z. Returns false when a correction
+// failed (x and m untouched).
+template <class Solve>
+static bool refineInto(const KNM<double> &S, MatriceMorse<double> *C, MatriceMorse<double> *B, const KN<double> &f,
+                       const KN<double> &d, std::vector<double> &z, Solve solve, KN<double> *px, KN<double> *pm) {
+  const int n = int(S.N()), nc = int(C->n);
+  std::vector<double> residual(n + nc);
+  for (int step = 0; step < 2; step++) {   // r = b - K z from S, B (or C^T) and C
+    for (int r = 0; r < n; r++) residual[r] = f[r];
+    for (int a = 0; a < nc; a++) residual[n + a] = d[a];
+    for (int j = 0; j < n; j++) {
+      double xj = z[j];
+      for (int i = 0; i < n; i++) residual[i] -= S(i, j)*xj;
+    }
+    if (B) for (size_t e = 0; e < size_t(B->nnz); e++) residual[B->i[e]] -= B->aij[e]*z[n + B->j[e]];
+    else for (size_t e = 0; e < size_t(C->nnz); e++) residual[C->j[e]] -= C->aij[e]*z[n + C->i[e]];
+    for (size_t e = 0; e < size_t(C->nnz); e++) residual[n + C->i[e]] -= C->aij[e]*z[C->j[e]];
+    if (!solve(residual)) return false;
+    for (int r = 0; r < n + nc; r++) z[r] += residual[r];
+  }
+  px->resize(n);
+  pm->resize(nc);
+  for (int r = 0; r < n; r++) (*px)[r] = z[r];
+  for (int a = 0; a < nc; a++) (*pm)[a] = z[n + a];
+  return true;
+}
 
 static long denseKktSolve(KNM<double> *const &pS, Matrice_Creuse<double> *const &pC,
                           Matrice_Creuse<double> *const &pB, KN<double> *const &pf, KN<double> *const &pd,
@@ -58,28 +87,11 @@ static long denseKktSolve(KNM<double> *const &pS, Matrice_Creuse<double> *const 
   int info = 0;
   if (size > 0) dgesv_(&size, &unit, A.data(), &size, pivots.data(), rhs.data(), &size, &info);
   if (info != 0) return info;
-  // two steps of iterative refinement on the same factors, as UMFPACK takes by default (without
-  // them the rigid sphere's Coulomb check read 5.3e-14 against UMFPACK's 4.5e-17): r = b - K x
-  // from S, B and C
-  std::vector<double> residual(size);
-  for (int step = 0; step < 2; step++) {
-    for (int r = 0; r < n; r++) residual[r] = (*pf)[r];
-    for (int a = 0; a < nc; a++) residual[n + a] = (*pd)[a];
-    for (int j = 0; j < n; j++) {
-      double xj = rhs[j];
-      for (int i = 0; i < n; i++) residual[i] -= S(i, j)*xj;
-    }
-    for (size_t e = 0; e < size_t(B->nnz); e++) residual[B->i[e]] -= B->aij[e]*rhs[n + B->j[e]];
-    for (size_t e = 0; e < size_t(C->nnz); e++) residual[n + C->i[e]] -= C->aij[e]*rhs[C->j[e]];
-    dgetrs_("N", &size, &unit, A.data(), &size, pivots.data(), residual.data(), &size, &info);
-    if (info != 0) return -1;
-    for (int r = 0; r < size; r++) rhs[r] += residual[r];
-  }
-  px->resize(n);
-  pm->resize(nc);
-  for (int r = 0; r < n; r++) (*px)[r] = rhs[r];
-  for (int a = 0; a < nc; a++) (*pm)[a] = rhs[n + a];
-  return 0;
+  auto solve = [&](std::vector<double> &r) {
+    dgetrs_("N", &size, &unit, A.data(), &size, pivots.data(), r.data(), &size, &info);
+    return info == 0;
+  };
+  return refineInto(S, C, B, *pf, *pd, rhs, solve, px, pm) ? 0 : -1;
 }
 
 // The reduced problem's KKT systems on a positive definite S (include/solve/reduced_problem.idp):
@@ -135,7 +147,7 @@ static long denseCholeskyKktSolve(KNM<double> *const &pS, Matrice_Creuse<double>
   ffassert(!C->half);
   const double *L = choleskyFactor.data();
   const double one = 1., zero = 0., minusOne = -1.;
-  const int unit = 1, ncRows = std::max(nc, 1);
+  const int unit = 1;
   // W = L^-1 C^T (n x nc) and M = W^T W (its lower triangle), factorized
   std::vector<double> W(size_t(n)*nc, 0.), M(size_t(nc)*nc, 0.);
   for (size_t e = 0; e < size_t(C->nnz); e++) W[size_t(C->i[e])*n + C->j[e]] += C->aij[e];
@@ -145,39 +157,23 @@ static long denseCholeskyKktSolve(KNM<double> *const &pS, Matrice_Creuse<double>
     dpotrf_("L", &nc, M.data(), &nc, &info);
     if (info != 0) return info;
   }
-  // one solve of [S C^T; C 0] [x; m] = [rf; rd] on the factors: x and m overwrite rf and rd
-  auto solve = [&](std::vector<double> &rf, std::vector<double> &rd) {
-    dtrsv_("L", "N", "N", &n, L, &n, rf.data(), &unit);                                   // z = L^-1 f
+  // one solve of [S C^T; C 0] [x; m] = r on the factors, in place (x first, then m)
+  auto solve = [&](std::vector<double> &r) {
+    double *rf = r.data(), *rd = r.data() + n;
+    dtrsv_("L", "N", "N", &n, L, &n, rf, &unit);                                         // z = L^-1 f
     if (nc > 0) {
-      dgemv_("T", &n, &nc, &one, W.data(), &n, rf.data(), &unit, &minusOne, rd.data(), &unit);   // W^T z - d
-      dpotrs_("L", &nc, &unit, M.data(), &ncRows, rd.data(), &ncRows, &info);                    // m
-      dgemv_("N", &n, &nc, &minusOne, W.data(), &n, rd.data(), &unit, &one, rf.data(), &unit);   // z - W m
+      dgemv_("T", &n, &nc, &one, W.data(), &n, rf, &unit, &minusOne, rd, &unit);   // W^T z - d
+      dpotrs_("L", &nc, &unit, M.data(), &nc, rd, &nc, &info);                     // m
+      dgemv_("N", &n, &nc, &minusOne, W.data(), &n, rd, &unit, &one, rf, &unit);   // z - W m
     }
-    dtrsv_("L", "T", "N", &n, L, &n, rf.data(), &unit);                                   // x = L^-T (...)
+    dtrsv_("L", "T", "N", &n, L, &n, rf, &unit);                                         // x
+    return info == 0;
   };
-  std::vector<double> x(pf->operator double *(), pf->operator double *() + n), m(nc), rf(n), rd(nc);
-  for (int a = 0; a < nc; a++) m[a] = (*pd)[a];
-  solve(x, m);
-  // two steps of iterative refinement, as denseKktSolve's: r = b - K [x; m] from S and C
-  for (int step = 0; step < 2; step++) {
-    for (int r = 0; r < n; r++) rf[r] = (*pf)[r];
-    for (int a = 0; a < nc; a++) rd[a] = (*pd)[a];
-    for (int j = 0; j < n; j++) {
-      double xj = x[j];
-      for (int i = 0; i < n; i++) rf[i] -= S(i, j)*xj;
-    }
-    for (size_t e = 0; e < size_t(C->nnz); e++) {
-      rf[C->j[e]] -= C->aij[e]*m[C->i[e]];
-      rd[C->i[e]] -= C->aij[e]*x[C->j[e]];
-    }
-    solve(rf, rd);
-    for (int r = 0; r < n; r++) x[r] += rf[r];
-    for (int a = 0; a < nc; a++) m[a] += rd[a];
-  }
-  px->resize(n);
-  pm->resize(nc);
-  for (int r = 0; r < n; r++) (*px)[r] = x[r];
-  for (int a = 0; a < nc; a++) (*pm)[a] = m[a];
+  std::vector<double> z(n + nc);
+  for (int r = 0; r < n; r++) z[r] = (*pf)[r];
+  for (int a = 0; a < nc; a++) z[n + a] = (*pd)[a];
+  solve(z);
+  refineInto(S, C, nullptr, *pf, *pd, z, solve, px, pm);
   return 0;
 }
 
