@@ -413,11 +413,58 @@ void tetVertexPattern(const Mesh3 &Th, std::vector<long> &rowStart, std::vector<
   neighbour.resize(pairs);
 }
 
+// The vertex pattern of the last tetrahedral mesh (the SQP assembles a tangent on one mesh at every
+// factorization: the pattern and its searches took a third of nodalSaddle3D at R/32): its rows
+// (tetVertexPattern), the place of each tetrahedron's 16 vertex pairs in them (corner p's row,
+// corner q's column: place[16 k + 4 p + q]), and for each pair (a, b) the place of (b, a). A
+// signature of the connectivity tells a new mesh allocated at the same address.
+struct TetPattern {
+  const Mesh3 *mesh = nullptr;
+  long nv = -1, nt = -1;
+  unsigned long long signature = 0;
+  std::vector<long> rowStart, place, transposed;
+  std::vector<int> neighbour;
+};
+
+unsigned long long connectivitySignature(const Mesh3 &Th) {
+  unsigned long long h = 1469598103934665603ULL;   // FNV-1a over the corners' vertex numbers
+  for (long k = 0; k < Th.nt; k++)
+    for (int p = 0; p < 4; p++) {
+      h ^= (unsigned long long)Th(Th[k][p]);
+      h *= 1099511628211ULL;
+    }
+  return h;
+}
+
+const TetPattern &tetPattern(const Mesh3 &Th) {
+  static TetPattern cached;
+  const unsigned long long signature = connectivitySignature(Th);
+  if (cached.mesh == &Th && cached.nv == Th.nv && cached.nt == Th.nt && cached.signature == signature)
+    return cached;
+  cached.mesh = &Th;
+  cached.nv = Th.nv;
+  cached.nt = Th.nt;
+  cached.signature = signature;
+  tetVertexPattern(Th, cached.rowStart, cached.neighbour);
+  const std::vector<long> &rowStart = cached.rowStart;
+  const std::vector<int> &neighbour = cached.neighbour;
+  auto find = [&](long a, long b) {
+    return long(std::lower_bound(neighbour.begin() + rowStart[a], neighbour.begin() + rowStart[a + 1], int(b)) - neighbour.begin());
+  };
+  cached.place.resize(16 * Th.nt);
+  for (long k = 0; k < Th.nt; k++)
+    for (int p = 0; p < 4; p++)
+      for (int q = 0; q < 4; q++) cached.place[16 * k + 4 * p + q] = find(Th(Th[k][p]), Th(Th[k][q]));
+  cached.transposed.resize(neighbour.size());
+  for (long a = 0; a < Th.nv; a++)
+    for (long w = rowStart[a]; w < rowStart[a + 1]; w++) cached.transposed[w] = find(neighbour[w], a);
+  return cached;
+}
+
 // The 3 x 3 tangent blocks of the vertex pairs summed over the tetrahedra, from the 81 arrays A.
-void tetTangentBlocks(const Mesh3 &Th, const KN<double> &A, const std::vector<long> &rowStart,
-                      const std::vector<int> &neighbour, std::vector<double> &block) {
+void tetTangentBlocks(const Mesh3 &Th, const KN<double> &A, const TetPattern &pattern, std::vector<double> &block) {
   const long nt = Th.nt;
-  block.assign(9 * neighbour.size(), 0.);
+  block.assign(9 * pattern.neighbour.size(), 0.);
   for (long k = 0; k < nt; k++) {
     const Tet &K = Th[k];
     double g[4][3];
@@ -426,7 +473,6 @@ void tetTangentBlocks(const Mesh3 &Th, const KN<double> &A, const std::vector<lo
     double a81[81];
     for (int r = 0; r < 81; r++) a81[r] = volume * A[r * nt + k];
     for (int p = 0; p < 4; p++) {
-      long a = Th(K[p]);
       // h[(3 i + k) 3 + L] = sum_J A_(iJ)(kL) g_a[J]: the row half of the product, once per corner
       double h[27];
       for (int i = 0; i < 3; i++)
@@ -437,9 +483,7 @@ void tetTangentBlocks(const Mesh3 &Th, const KN<double> &A, const std::vector<lo
             h[(3 * i + c) * 3 + L] = sum;
           }
       for (int q = 0; q < 4; q++) {
-        long b = Th(K[q]);
-        long where = std::lower_bound(neighbour.begin() + rowStart[a], neighbour.begin() + rowStart[a + 1], int(b)) - neighbour.begin();
-        double *B = &block[9 * where];
+        double *B = &block[9 * pattern.place[16 * k + 4 * p + q]];
         for (int i = 0; i < 3; i++)
           for (int c = 0; c < 3; c++)
             B[3 * i + c] += h[(3 * i + c) * 3] * g[q][0] + h[(3 * i + c) * 3 + 1] * g[q][1] + h[(3 * i + c) * 3 + 2] * g[q][2];
@@ -454,11 +498,11 @@ long tangentStiffness3D(pmesh3 const &pTh, KN<double> *const &pA, Matrice_Creuse
   const KN<double> &A = *pA;
   const long nv = Th.nv;
   ffassert(A.N() == 81 * Th.nt);
-  std::vector<long> rowStart;
-  std::vector<int> neighbour;
-  tetVertexPattern(Th, rowStart, neighbour);
+  const TetPattern &pattern = tetPattern(Th);
+  const std::vector<long> &rowStart = pattern.rowStart;
+  const std::vector<int> &neighbour = pattern.neighbour;
   std::vector<double> block;
-  tetTangentBlocks(Th, A, rowStart, neighbour, block);
+  tetTangentBlocks(Th, A, pattern, block);
   long n = 3 * nv, entries = 9 * long(neighbour.size());
   std::vector<int> rows(entries), columns(entries);
   std::vector<double> values(entries);
@@ -509,11 +553,11 @@ long nodalSaddle3D(pmesh3 const &pTh, KN<double> *const &pA, KN<double> *const &
   const KN<double> &A = *pA, &cofactors = *pCofactors, &nodalVolume = *pNodalVolume, &compliance = *pCompliance;
   const long nv = Th.nv, nt = Th.nt;
   ffassert(A.N() == 81 * nt && cofactors.N() == 9 * nt && nodalVolume.N() == nv && compliance.N() == nv);
-  std::vector<long> rowStart;
-  std::vector<int> neighbour;
-  tetVertexPattern(Th, rowStart, neighbour);
+  const TetPattern &pattern = tetPattern(Th);
+  const std::vector<long> &rowStart = pattern.rowStart;
+  const std::vector<int> &neighbour = pattern.neighbour;
   std::vector<double> block;
-  tetTangentBlocks(Th, A, rowStart, neighbour, block);
+  tetTangentBlocks(Th, A, pattern, block);
   // R: for the pair (n, b) of the pattern, the 3 entries of row n on vertex b's dofs
   std::vector<double> rcoef(3 * neighbour.size(), 0.);
   for (long k = 0; k < nt; k++) {
@@ -524,15 +568,11 @@ long nodalSaddle3D(pmesh3 const &pTh, KN<double> *const &pA, KN<double> *const &
     double cof[3][3];
     for (int i = 0; i < 3; i++)
       for (int j = 0; j < 3; j++) cof[i][j] = cofactors[(3 * i + j) * nt + k];
-    for (int p = 0; p < 4; p++) {
-      long n = Th(K[p]);
+    for (int p = 0; p < 4; p++)
       for (int q = 0; q < 4; q++) {
-        long b = Th(K[q]);
-        long where = std::lower_bound(neighbour.begin() + rowStart[n], neighbour.begin() + rowStart[n + 1], int(b)) - neighbour.begin();
-        for (int i = 0; i < 3; i++)
-          rcoef[3 * where + i] += quarter * (cof[i][0] * g[q][0] + cof[i][1] * g[q][1] + cof[i][2] * g[q][2]);
+        double *r = &rcoef[3 * pattern.place[16 * k + 4 * p + q]];
+        for (int i = 0; i < 3; i++) r[i] += quarter * (cof[i][0] * g[q][0] + cof[i][1] * g[q][1] + cof[i][2] * g[q][2]);
       }
-    }
   }
   // the pressure unknowns scaled, p_n = s_n q_n, s_n = |R_n| / compliance_n: the scale of
   // include/body/volumetric.idp (saddlePressureScales), which says why
@@ -552,26 +592,58 @@ long nodalSaddle3D(pmesh3 const &pTh, KN<double> *const &pA, KN<double> *const &
   for (long n = 0; n < nv; n++)
     for (long w = rowStart[n]; w < rowStart[n + 1]; w++)
       for (int i = 0; i < 3; i++) diagonal[3 * neighbour[w] + i] += rcoef[3 * w + i] * rcoef[3 * w + i] / compliance[n];
-  const long pairs = long(neighbour.size()), size = 4 * nv, entries = 9 * pairs + 6 * pairs + nv;
-  std::vector<int> rows(entries), columns(entries);
-  std::vector<double> values(entries);
+  // The entries row by row, each row's columns increasing (the order FreeFEM sorts a matrix into
+  // before MUMPS reads it): a matrix already holding this pattern in this order (the last call's,
+  // once sorted) takes the values in place, without a new HashMatrix, its hashing and its sort
+  // (a fifth of the call at R/32); any other gets a new one.
+  const long pairs = long(neighbour.size()), size = 4 * nv, entries = 15 * pairs + nv;
+  HashMatrix<int, double> *held = pM->pHM();
+  bool inPlace = held && held->n == size && held->m == size && long(held->nnz) == entries && held->half == 0
+                 && held->fortran == 0;
+  std::vector<int> rows, columns;
+  std::vector<double> fresh;
+  double *values = inPlace ? held->aij : nullptr;
+  auto emit = [&](long e, long row, long column, double value) {
+    if (inPlace && (held->i[e] != row || held->j[e] != column)) {   // another pattern: a new matrix
+      inPlace = false;
+      rows.resize(entries);
+      columns.resize(entries);
+      fresh.resize(entries);
+      for (long f = 0; f < e; f++) { rows[f] = held->i[f]; columns[f] = held->j[f]; fresh[f] = held->aij[f]; }
+      values = fresh.data();
+    }
+    if (!inPlace && rows.empty()) {
+      rows.resize(entries);
+      columns.resize(entries);
+      fresh.resize(entries);
+      values = fresh.data();
+    }
+    if (!inPlace) { rows[e] = int(row); columns[e] = int(column); }
+    values[e] = value;
+  };
   long e = 0;
   for (long a = 0; a < nv; a++)
-    for (long w = rowStart[a]; w < rowStart[a + 1]; w++) {
-      const long b = neighbour[w];
-      for (int i = 0; i < 3; i++)
-        for (int c = 0; c < 3; c++) {
-          rows[e] = int(3 * a + i); columns[e] = int(3 * b + c); values[e] = block[9 * w + 3 * i + c]; e++;
-        }
-      for (int i = 0; i < 3; i++) {   // R (row 3 nv + a, column 3 b + i) and its transpose
-        rows[e] = int(3 * nv + a); columns[e] = int(3 * b + i); values[e] = scale[a] * rcoef[3 * w + i]; e++;
-        rows[e] = int(3 * b + i); columns[e] = int(3 * nv + a); values[e] = scale[a] * rcoef[3 * w + i]; e++;
+    for (int i = 0; i < 3; i++) {
+      const long row = 3 * a + i;
+      for (long w = rowStart[a]; w < rowStart[a + 1]; w++)
+        for (int c = 0; c < 3; c++) emit(e++, row, 3 * neighbour[w] + c, block[9 * w + 3 * i + c]);
+      for (long w = rowStart[a]; w < rowStart[a + 1]; w++) {   // R^T: R's entry (n, a), the pair (n, a)
+        const long n = neighbour[w];
+        emit(e++, row, 3 * nv + n, scale[n] * rcoef[3 * pattern.transposed[w] + i]);
       }
     }
-  for (long n = 0; n < nv; n++) { rows[e] = int(3 * nv + n); columns[e] = int(3 * nv + n); values[e] = -compliance[n] * scale[n] * scale[n]; e++; }
+  for (long n = 0; n < nv; n++) {
+    for (long w = rowStart[n]; w < rowStart[n + 1]; w++)
+      for (int i = 0; i < 3; i++) emit(e++, 3 * nv + n, 3 * neighbour[w] + i, scale[n] * rcoef[3 * w + i]);
+    emit(e++, 3 * nv + n, 3 * nv + n, -compliance[n] * scale[n] * scale[n]);
+  }
   ffassert(e == entries);
+  if (inPlace) {
+    held->re_do_numerics++;   // (what FreeFEM's own in-place changes of values tell its solvers)
+    return entries;
+  }
   HashMatrix<int, double> *M = new HashMatrix<int, double>(int(size), int(size), 0, 0);
-  M->set(int(size), int(size), 0, size_t(entries), rows.data(), columns.data(), values.data());
+  M->set(int(size), int(size), 0, size_t(entries), rows.data(), columns.data(), fresh.data());
   pM->A.master(M);
   pM->typemat = 0;
   return entries;
