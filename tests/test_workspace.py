@@ -206,6 +206,20 @@ def test_include_layout():
     listed = set(re.findall(r"^macro (included\w+) 1 // EOM", setup_text, re.M)) - {"includedCoreDriverSetup"}
     check("layout: core/driver_setup.idp skips exactly the files that include it",
           listed == {guard_of(r) for r in setup_users}, str(listed ^ {guard_of(r) for r in setup_users}))
+    # every solver statistic the suite can set fits core/run.idp's table (FreeFEM's string arrays
+    # do not grow): names given as literals only
+    run_text = open(os.path.join(ROOT, "include", "core", "run.idp")).read()
+    capacity = int(re.search(r"int solverStatisticMax = (\d+)", run_text).group(1))
+    names, computed = set(), []
+    for path in _glob.glob(os.path.join(ROOT, "include", "**", "*.idp"), recursive=True):
+        code = "\n".join(l for l in open(path).read().splitlines() if not l.lstrip().startswith("//"))
+        for call in re.findall(r"setSolverStatistic\(([^,]*),", code):
+            if re.fullmatch(r'"\w+"', call.strip()):
+                names.add(call.strip())
+            elif "string name" not in call:
+                computed.append(call)
+    check(f"layout: the {len(names)} solver statistics fit the table ({capacity}), each a literal name",
+          len(names) <= capacity and not computed, f"{len(names)} names, computed: {computed}")
     for path in _glob.glob(os.path.join(ROOT, "include", "contact", "**", "*.idp"), recursive=True):
         text = open(path).read()
         check(f"layout {os.path.relpath(path, ROOT)}: no reference to the body's volumetric rows",
