@@ -456,39 +456,60 @@ def test_indentation():
 
 
 def test_indentation_krylov():
-    """Issue 43: Newton's steps on reused factors by GMRES (-krylov yes, solve/krylov_step.idp) on the
-    3D indentation at R/8. Against a factorization at every iteration (-krylov no -reuse 0, at -tol
+    """Issue 43: Newton's steps on reused factors by GMRES (solve/krylov_step.idp) on the 3D
+    indentation at R/8, by the default -krylov step (one factorization a load step, after its first
+    Newton step by GMRES on the last step's factors) and by -krylov yes (GMRES at every iteration
+    after a factorization). Against a factorization at every iteration (-krylov no -reuse 0, at -tol
     1e-10: IPOPT's models at 1e-8 keep a barrier gap on the contact nodes worth 1.0e-6 of the force,
     test_reduced_by_last_set): the same force at every depth to the issue's 1e-6 (the force sums
-    the multipliers of all the contact rows), in fewer factorizations; the summary's per-step factorizations and Krylov
-    iterations add up to its totals. A planted error (a copy of the suite whose preconditioner's Schur
-    block is scaled by 0.01, as if its factors were far staler than they are) makes GMRES miss its
-    tolerance in some steps: those factorize afresh (more factorizations than without it) and the
-    forces are the same to 1e-6: never a wrong step. The 3D Neo-Hookean block on its foundation with
-    -krylov yes lands on its exact homogeneous state (cube_case's bounds), on one factorization."""
+    the multipliers of all the contact rows). The default factorizes less than the chord steps alone
+    (-krylov no: each step twice) and at most once a load step after the first's two (measured: 11
+    in 10 steps), -krylov yes less than -reuse 0; the summaries' per-step factorizations and Krylov
+    iterations add up to their totals. A planted error (a copy of the suite whose preconditioner's
+    Schur block is scaled by 0.01, as if its factors were far staler than they are) makes -krylov
+    yes's GMRES miss its tolerance in some steps: those factorize afresh (more factorizations than
+    without it). The default's GMRES, on factors of the same load step or the last, meets the
+    tolerance even so at R/8 and R/16 (measured), so its plant is GMRES's cap cut to one iteration:
+    no step by GMRES is taken, each falls back to a fresh factorization. In both the forces are the
+    same to 1e-6: never a wrong step. The 3D Neo-Hookean block on
+    its foundation with -krylov yes lands on its exact homogeneous state (cube_case's bounds), on one
+    factorization."""
     args = ["-dim", "3", "-h", "0.125"]
     direct = run_summary("indentation krylov: direct", "benchmarks/indentation.edp",
                          args + ["-krylov", "no", "-reuse", "0", "-tol", "1e-10"])
+    chord = run_summary("indentation krylov: chord", "benchmarks/indentation.edp", args + ["-krylov", "no"])
+    default = run_summary("indentation krylov: step", "benchmarks/indentation.edp", args)
     krylov = run_summary("indentation krylov: krylov", "benchmarks/indentation.edp", args + ["-krylov", "yes"])
     planted, o = planted_indentation("indentation krylov planted", "solve/krylov_step.idp",
                                      "real krylovPlantedError = 1;", "real krylovPlantedError = 0.01;",
                                      args + ["-krylov", "yes"])
-    if direct is None or krylov is None or planted is None:
+    planted_step, o_step = planted_indentation("indentation krylov planted step", "solve/krylov_step.idp",
+                                               "int krylovMaxIterations = 15;", "int krylovMaxIterations = 1;", args)
+    if None in (direct, chord, default, krylov, planted, planted_step):
         return
 
     check_depth_forces("indentation krylov", out("indentation krylov: direct"),
-                       (("krylov", out("indentation krylov: krylov")), ("planted", o)), "-reuse 0")
+                       (("step", out("indentation krylov: step")), ("krylov", out("indentation krylov: krylov")),
+                        ("planted", o), ("planted step", o_step)), "-reuse 0")
     counts = [s["timings"]["factorizations"] for s in (direct, krylov, planted)]
     check("indentation krylov: factorizations: krylov < direct -reuse 0, and the planted run factorizes more than krylov",
           counts[1] < counts[0] and counts[2] > counts[1], str(counts))
-    for label, s in (("krylov", krylov), ("planted", planted)):
+    steps = len(default["steps"])
+    counts = [s["timings"]["factorizations"] for s in (default, chord)]
+    check("indentation krylov: factorizations: step < chord, at most one a load step after the first's two",
+          counts[0] < counts[1] and counts[0] <= steps + 1, f"{counts} in {steps} steps")
+    check("indentation krylov: planted step: GMRES ran and stopped at its cap every time (no step by GMRES taken)",
+          planted_step["timings"]["krylov_iterations"] > 0 and planted_step["solver"].get("krylov_steps", 0) == 0,
+          f"{planted_step['timings']}")
+    for label, s in (("step", default), ("krylov", krylov), ("planted", planted)):
         steps = s["steps"]
         check(f"indentation krylov: {label}: GMRES ran; the steps' factorizations and Krylov iterations add up to the totals",
               s["timings"]["krylov_iterations"] > 0 and s["solver"].get("krylov_steps", 0) > 0
               and sum(x["factorizations"] for x in steps) == s["timings"]["factorizations"]
               and sum(x["krylov_iterations"] for x in steps) == s["timings"]["krylov_iterations"],
               f"{s['timings']}")
-    check("indentation krylov: direct ran no GMRES", direct["timings"]["krylov_iterations"] == 0)
+    check("indentation krylov: direct and chord ran no GMRES",
+          direct["timings"]["krylov_iterations"] == 0 and chord["timings"]["krylov_iterations"] == 0)
     # the block on its foundation by the same path: its exact homogeneous state (cube_case's bounds)
     label = "cube 3D neohookean on foundation -krylov yes"
     cube = cube_case(label, ["-material", "neohookean", "-dim", "3", "-n", "3", "-foundation", "1", "-krylov", "yes"])
@@ -542,7 +563,7 @@ def test_reduced_by_last_set():
     (balance, penetration) pass (exit 0). Models on fresh factors whose S is positive definite take
     the set too (more solves by the set than reused models), on S's Cholesky factor
     (dense_kkt_check.edp: its bounds there)."""
-    check_script_cases("dense_kkt_check", 6, prefix="dense_kkt_check case=")
+    check_script_cases("dense_kkt_check", 8, prefix="dense_kkt_check case=")
     args = ["-dim", "3", "-h", "0.125"]
     by_set = run_summary("indentation last set", "benchmarks/indentation.edp", args)
     runs, folders = {}, {}
@@ -569,16 +590,17 @@ def test_reduced_by_last_set():
 def test_anderson_acceleration():
     """Issue 43: the SQP's steps on reused factors mixed from its last ones (solve/anderson.idp,
     -anderson 3 by default on the 3D saddle point path). The 3D indentation at R/16 with -reuse 0.5
-    (where the factors are kept longest, so the steps mixed most) against -anderson 0: the force at
+    and -krylov no (the chord steps alone, where the factors are kept longest, so the steps mixed
+    most) against -anderson 0: the force at
     every depth to the issue's 1e-6 (both stop where each free dof's residual is below -tol, 1e-8, of
     the force scale), fewer SQP iterations in all (measured 84 against 111, the same 14
     factorizations), mixed steps in one run and none in the other. A planted wrong mix (the mixing
     coefficients 50 times theirs) at R/8: the SQP's checks on the energy and the residual catch its
     steps, and the forces are -anderson 0's to 1e-6, exit 0: never a wrong step."""
-    args = ["-dim", "3", "-h", "0.0625", "-reuse", "0.5"]
+    args = ["-dim", "3", "-h", "0.0625", "-reuse", "0.5", "-krylov", "no"]
     mixed = run_summary("indentation anderson", "benchmarks/indentation.edp", args)
     plain = run_summary("indentation anderson off", "benchmarks/indentation.edp", args + ["-anderson", "0"])
-    coarse = ["-dim", "3", "-h", "0.125"]
+    coarse = ["-dim", "3", "-h", "0.125", "-krylov", "no"]
     coarse_plain = run_summary("indentation anderson off R/8", "benchmarks/indentation.edp", coarse + ["-anderson", "0"])
     planted, o = planted_indentation("indentation anderson planted", "solve/anderson.idp",
                                      "    mixed -= gamma[i]*step;", "    mixed -= 50*gamma[i]*step;", coarse)

@@ -284,14 +284,13 @@ def rubber_3d_study(cube_ns, indentation_levels):
             fill.append(row)
             print(f"3D block n = {n}: {row['ndof']} dofs, factor entries per unknown {row['penalty_per_unknown']:.0f} (penalty), "
                   f"{row['nodal_per_unknown']:.0f} (nodal saddle point): x{row['ratio_per_unknown']:.2f}", flush=True)
-    # each level four times: the default (-krylov no: the stale tangent's own step where -reuse
-    # allows, mixed from the last ones, else a factorization, in single precision: -factors auto),
-    # Newton's steps by GMRES on the last factors (-krylov yes), the default with double precision
-    # factors (-factors double, as before issue 43's single precision) and without the mixing
-    # (-anderson 0, as before issue 43's Anderson acceleration)
+    # each level four times: the default (-krylov step: one factorization a load step, after its first
+    # Newton step by GMRES on the last step's factors; issue 43), the chord steps alone as before it
+    # (-krylov no: the stale tangent's own step where -reuse allows, mixed from the last ones, else a
+    # factorization), Newton's steps by GMRES at every iteration (-krylov yes), and the default with
+    # double precision factors (-factors double, as before issue 43's single precision)
     for level in indentation_levels:
-        for solver, extra in (("no", []), ("yes", []), ("no, double", ["-factors", "double"]),
-                              ("no, anderson 0", ["-anderson", "0"])):
+        for solver, extra in (("step", []), ("no", []), ("yes", []), ("step, double", ["-factors", "double"])):
             folder = f"{OUT}/indentation_3d_R{level}_{solver.replace(', ', '_').replace(' ', '')}"
             run = measured(f"indentation 3D h = R/{level} -krylov {solver}", 1, "benchmarks/indentation.edp",
                            ["-dim", "3", "-h", repr(1.0 / level), "-krylov", solver.split(",")[0]] + extra, folder)
@@ -323,32 +322,28 @@ def read_column(path, name):
 
 
 def indentation_steps_table(rows):
-    """The finest level's two runs step by step: SQP iterations, factorizations and shifted iterations
-    (and GMRES iterations with -krylov yes), and the force's relative difference at each depth."""
+    """The finest level's runs step by step, before (-krylov no: the chord steps alone) and after (the
+    default -krylov step): SQP iterations, GMRES iterations, factorizations and shifted iterations,
+    and the force's relative difference at each depth; then -krylov yes and -factors double in a line."""
     finest = [r for r in rows if r["level"] == (rows[-1]["level"] if rows else None)]
     runs = {r["solver"]: r for r in finest}
-    if not {"no", "yes"} <= set(runs):
-        return "(the two runs of the finest level did not both complete)"
-    direct, krylov = runs["no"], runs["yes"]
-    table = md_tables.table(("step", "-krylov no: SQP", "factorizations", "shifted", "-krylov yes: SQP", "GMRES", "factorizations",
-                             "shifted", "force, yes / no - 1"),
+    if not {"step", "no"} <= set(runs):
+        return "(the finest level's -krylov step and -krylov no runs did not both complete)"
+    after, before = runs["step"], runs["no"]
+    table = md_tables.table(("step", "before (-krylov no): SQP", "factorizations", "shifted", "after (-krylov step): SQP",
+                             "GMRES", "factorizations", "shifted", "force, after / before - 1"),
                             [(k + 1, *[a[i] for i in (0, 2, 3)], *b, f"{fb / fa - 1:.1e}")
-                             for k, (a, b, fa, fb) in enumerate(zip(direct["per_step"], krylov["per_step"], direct["forces"], krylov["forces"]))])
-    text = (f"{table}\n\n{direct['level']}: wall {direct['wall_s']:.0f} s (-krylov no) and {krylov['wall_s']:.0f} s (-krylov yes): "
-            f"x{direct['wall_s'] / krylov['wall_s']:.2f}")
-    double = runs.get("no, double")
-    if double:   # the default before single precision factors (issue 43)
-        worst = max((abs(b / a - 1) for a, b in zip(double["forces"], direct["forces"])), default=float("nan"))
-        text += (f"; -factors double (-krylov no) {double['wall_s']:.0f} s, {double['factorizations']} factorizations of "
-                 f"{double['factorization_mean_s']:.2f} s against {direct['factorization_mean_s']:.2f} s: the default x"
-                 f"{double['wall_s'] / direct['wall_s']:.2f} faster, its forces {worst:.1e} from double's")
-    plain = runs.get("no, anderson 0")
-    if plain:   # the default before Anderson's mixing (issue 43)
-        worst = max((abs(b / a - 1) for a, b in zip(plain["forces"], direct["forces"])), default=float("nan"))
-        iterations = [sum(step[0] for step in run["per_step"]) for run in (direct, plain)]
-        text += (f"; -anderson 0 (-krylov no) {plain['wall_s']:.0f} s, {iterations[1]} SQP iterations against "
-                 f"{iterations[0]}, {plain['factorizations']} factorizations against {direct['factorizations']}: the "
-                 f"default x{plain['wall_s'] / direct['wall_s']:.2f} faster, its forces {worst:.1e} from -anderson 0's")
+                             for k, (a, b, fa, fb) in enumerate(zip(before["per_step"], after["per_step"], before["forces"], after["forces"]))])
+    text = (f"{table}\n\n{after['level']}: wall {before['wall_s']:.0f} s before (-krylov no, {before['factorizations']} "
+            f"factorizations) and {after['wall_s']:.0f} s after (-krylov step, {after['factorizations']}, "
+            f"{after['krylov_iterations']} GMRES iterations): x{before['wall_s'] / after['wall_s']:.2f}")
+    for solver, what in (("yes", "-krylov yes"), ("step, double", "-factors double")):
+        other = runs.get(solver)
+        if other:
+            worst = max((abs(b / a - 1) for a, b in zip(after["forces"], other["forces"])), default=float("nan"))
+            text += (f"; {what} {other['wall_s']:.0f} s, {other['factorizations']} factorizations of "
+                     f"{other['factorization_mean_s']:.2f} s, {other['krylov_iterations']} GMRES iterations, its forces "
+                     f"{worst:.1e} from the default's")
     return text
 
 
@@ -618,7 +613,7 @@ def main():
             f"3D Neo-Hookean block on its foundation, nu = 0.499\n\n{t7}\n\n"
             f"3D indentation (benchmarks/indentation.edp -dim 3, 10 steps to 0.2 R)\n\n{t8}\n\n"
             f"3D indentation at the finest h, per load step: SQP iterations, GMRES iterations, factorizations and "
-            f"iterations on a shifted tangent, -krylov no (the default) against -krylov yes\n\n{t8b}\n\n"
+            f"iterations on a shifted tangent, before (-krylov no) and after (-krylov step, the default)\n\n{t8b}\n\n"
             f"Friction (mu = 0.3; the rigid set-ups' 0.2) against the frictionless run of the same driver and mesh\n\n{t9}\n\n"
             f"Dynamics: the bar against a wall (Newmark, redistributed mass), per time step\n\n{t10}")
     print("\n" + text)
