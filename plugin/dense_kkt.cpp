@@ -2,7 +2,8 @@
 // dense_kkt: the KKT systems of a contact set on the dense Schur block S, by LAPACK: the friction
 // polish's (include/solve/friction_polish.idp) by a dense LU of the whole system, the frictionless
 // reduced problem's (include/solve/reduced_problem.idp) on S's Cholesky factor where S is positive
-// definite. Built by `make` with ff-c++ against Debian's LAPACK; loaded by those two files.
+// definite, the Krylov step's preconditioner (include/solve/krylov_step.idp) on LU factors the
+// script keeps. Built by `make` with ff-c++ against Debian's LAPACK; loaded by those three files.
 //
 // The polish solves [S B; C 0] [x; m] = [f; d] once per pass: S the condensed Hessian on the n
 // contact dofs (dense: schurDense), C the active set's rows (sparse, a few entries a row), B its
