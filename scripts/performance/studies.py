@@ -341,7 +341,8 @@ def indentation_steps_table(rows):
         other = runs.get(solver)
         if other:
             worst = max((abs(b / a - 1) for a, b in zip(after["forces"], other["forces"])), default=float("nan"))
-            text += (f"; {what} {other['wall_s']:.0f} s, {other['factorizations']} factorizations of "
+            plural = "" if other["factorizations"] == 1 else "s"
+            text += (f"; {what} {other['wall_s']:.0f} s, {other['factorizations']} factorization{plural} of "
                      f"{other['factorization_mean_s']:.2f} s, {other['krylov_iterations']} GMRES iterations, its forces "
                      f"{worst:.1e} from the default's")
     return text
