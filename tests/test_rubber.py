@@ -568,7 +568,7 @@ def test_reduced_by_last_set():
     runs, folders = {}, {}
     for label, extra in (("off", []), ("off tight", ["-tol", "1e-10"])):
         runs[label], folders[label] = planted_indentation(f"indentation last set {label}", "solve/reduced_problem.idp",
-                                                          "int lastSetPasses = 3;", "int lastSetPasses = 0;", args + extra)
+                                                          "int lastSetPasses = 10;", "int lastSetPasses = 0;", args + extra)
     if by_set is None or None in runs.values():
         return
     tight = depth_forces(folders["off tight"])
