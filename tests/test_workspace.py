@@ -301,3 +301,48 @@ def test_allocator_keeps_blocks():
     anew; at 200k dofs a factorization 15.1 s -> 12.0 s). allocator_check.edp: a second array of
     160 MB reuses the first's pages (its bounds there)."""
     check_script_cases("allocator_check", 2, prefix="allocator_check case=")
+
+
+def test_progress_lines_live():
+    """Progress lines reach a pipe as they are printed (`FreeFem++ ... | tee run.log`):
+    plugin/run_control.cpp makes the standard output line-buffered as it loads (FreeFEM's endl does
+    not flush; a 200k dofs run's step lines had shown minutes late). live_output_check.edp prints a
+    line, then waits until a flag file exists, which this test creates only once it has read that
+    line: read while the script still runs, or not at all within 60 s (the line buffered)."""
+    import queue
+    import threading
+    folder = out("live_output")
+    os.makedirs(folder, exist_ok=True)
+    flag = os.path.join(folder, "flag")
+    if os.path.exists(flag):
+        os.remove(flag)
+    proc = subprocess.Popen(["FreeFem++", "-nw", "tests/live_output_check.edp", "-flag", flag], cwd=ROOT,
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    lines = queue.Queue()
+    threading.Thread(target=lambda: [lines.put(l) for l in proc.stdout] + [lines.put(None)], daemon=True).start()
+    live = False
+    try:
+        while True:
+            line = lines.get(timeout=60)
+            if line is None:
+                break
+            if line.startswith("live_output_check: waiting"):
+                live = proc.poll() is None
+                break
+    except queue.Empty:
+        pass
+    open(flag, "w").close()
+    proc.wait(timeout=300)
+    rest = []
+    while True:
+        try:
+            line = lines.get(timeout=10)
+        except queue.Empty:
+            break
+        if line is None:
+            break
+        rest.append(line)
+    check("the progress line was read from the pipe while the script still ran", live)
+    check("the script ended once the flag existed, exit 0",
+          proc.returncode == 0 and any(l.startswith("live_output_check: done") for l in rest),
+          f"exit {proc.returncode}")
